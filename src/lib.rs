@@ -1,0 +1,22 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+#![cfg_attr(docsrs, feature(doc_cfg))]
+
+mod convert;
+mod error;
+mod propagator;
+mod quat;
+pub mod rates;
+mod real;
+pub mod scheme;
+pub mod stabilize;
+mod vec3;
+
+pub use convert::{EulerZxz, EulerZyx};
+pub use error::Error;
+pub use propagator::Propagator;
+pub use quat::Quat;
+pub use real::Real;
+pub use vec3::Vec3;

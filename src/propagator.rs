@@ -1,0 +1,195 @@
+//! The propagator: an attitude, a scheme, a stabilizer and counters, advanced one gyro step at a time.
+
+use crate::rates::{Hold, Linear, Quadratic, RateModel};
+use crate::scheme::Scheme;
+use crate::stabilize::Stabilizer;
+use crate::{Error, Quat, Real, Vec3};
+
+/// Propagates a body-to-reference attitude quaternion from body-frame gyro rates.
+///
+/// `T` is the working precision (`f32` or `f64`), `S` the [scheme](crate::scheme), `Z` the
+/// [stabilizer](crate::stabilize). Small and `Copy`; no allocation, no trait objects, no panics on the step path.
+///
+/// Every `step_*` call validates its inputs first, computes the new attitude into locals and commits only
+/// on success: on any `Err` the propagator is bit-for-bit what it was before the call.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Propagator<T, S, Z> {
+    q: Quat<T>,
+    scheme: S,
+    stabilizer: Z,
+    steps: u64,
+    corrections: u64,
+    pending: u32,
+}
+
+impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
+    /// Starts from attitude `q0` (normalized here; any finite non-zero quaternion is accepted).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteQuaternion`], [`Error::ZeroQuaternion`], or [`Error::InvalidStabilizer`].
+    pub fn new(q0: Quat<T>, scheme: S, stabilizer: Z) -> Result<Self, Error> {
+        stabilizer.validate()?;
+        let q = Self::checked_unit(q0)?;
+        Ok(Self {
+            q,
+            scheme,
+            stabilizer,
+            steps: 0,
+            corrections: 0,
+            pending: 0,
+        })
+    }
+
+    fn checked_unit(q0: Quat<T>) -> Result<Quat<T>, Error> {
+        if !q0.is_finite() {
+            return Err(Error::NonFiniteQuaternion);
+        }
+        q0.normalized().ok_or(Error::ZeroQuaternion)
+    }
+
+    /// Replaces the attitude (normalized), keeping the counters. On error nothing changes.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteQuaternion`] or [`Error::ZeroQuaternion`].
+    pub fn set_attitude(&mut self, q: Quat<T>) -> Result<(), Error> {
+        self.q = Self::checked_unit(q)?;
+        self.pending = 0;
+        Ok(())
+    }
+
+    /// One step of `dt` (s) with the body rate `w` (rad/s) held constant over it (the seed's assumption V1).
+    ///
+    /// # Errors
+    /// See [`Propagator::step_with`].
+    #[inline]
+    pub fn step_hold(&mut self, w: Vec3<T>, dt: T) -> Result<(), Error> {
+        self.step_with(&Hold::new(w), dt)
+    }
+
+    /// One step of `dt` (s) with the rate linear from `w_start` to `w_end` (rad/s, samples at the step's ends).
+    ///
+    /// # Errors
+    /// See [`Propagator::step_with`].
+    #[inline]
+    pub fn step_linear(&mut self, w_start: Vec3<T>, w_end: Vec3<T>, dt: T) -> Result<(), Error> {
+        self.step_with(&Linear::new(w_start, w_end), dt)
+    }
+
+    /// One step of `dt` (s) with samples at the start, middle and end of the step (rad/s): a gyro sampled
+    /// at twice the step rate. The rate is the quadratic through the three samples.
+    ///
+    /// # Errors
+    /// See [`Propagator::step_with`].
+    #[inline]
+    pub fn step_mid(
+        &mut self,
+        w_start: Vec3<T>,
+        w_middle: Vec3<T>,
+        w_end: Vec3<T>,
+        dt: T,
+    ) -> Result<(), Error> {
+        self.step_with(&Quadratic::new(w_start, w_middle, w_end), dt)
+    }
+
+    /// One step of `dt` (s) with any [`RateModel`].
+    ///
+    /// # Errors
+    /// - [`Error::NonFiniteStep`] / [`Error::NonPositiveStep`]: `dt` is NaN, ±∞, zero or negative.
+    /// - [`Error::NonFiniteRate`]: a rate component is NaN or ±∞.
+    /// - [`Error::StepAngleBeyondStability`]: `dt · max|ω|` exceeds [`Scheme::step_angle_limit`].
+    /// - [`Error::GainBeyondStability`]: Baumgarte's `4k·dt` exceeds [`Scheme::real_axis_limit`].
+    /// - [`Error::NonFiniteResult`]: the arithmetic overflowed.
+    ///
+    /// In every case the state is unchanged.
+    #[inline]
+    pub fn step_with<R: RateModel<T>>(&mut self, rates: &R, dt: T) -> Result<(), Error> {
+        if !dt.is_finite() {
+            return Err(Error::NonFiniteStep);
+        }
+        if !(dt > T::ZERO) {
+            return Err(Error::NonPositiveStep);
+        }
+        if !rates.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        let limit = self.scheme.step_angle_limit();
+        if limit.is_finite() {
+            let angle_sq = rates.max_rate_squared() * dt * dt;
+            let l = T::from_f64(limit);
+            if !(angle_sq <= l * l) {
+                return Err(Error::StepAngleBeyondStability {
+                    step_angle: angle_sq.sqrt().to_f64(),
+                    limit,
+                });
+            }
+        }
+        if self.stabilizer.has_rhs_term() {
+            let gain_step = self.stabilizer.norm_stiffness() * dt;
+            let limit = self.scheme.real_axis_limit();
+            if !(gain_step <= T::from_f64(limit)) {
+                return Err(Error::GainBeyondStability {
+                    gain_step: gain_step.to_f64(),
+                    limit,
+                });
+            }
+        }
+        let advanced = self.scheme.advance(self.q, rates, dt, &self.stabilizer);
+        let pending = self.pending.saturating_add(1);
+        let (q, corrected) = self.stabilizer.after_step(advanced, pending);
+        if !q.is_finite() {
+            return Err(Error::NonFiniteResult);
+        }
+        self.q = q;
+        self.steps = self.steps.wrapping_add(1);
+        if corrected {
+            self.corrections = self.corrections.wrapping_add(1);
+            self.pending = 0;
+        } else {
+            self.pending = pending;
+        }
+        Ok(())
+    }
+
+    /// The attitude `q` (body to reference; Hamilton, scalar first). Unit up to the stabilizer's bound.
+    #[inline]
+    #[must_use]
+    pub fn attitude(&self) -> Quat<T> {
+        self.q
+    }
+
+    /// The seed's normalization error `N = |q|² − 1` (eq. (2)), evaluated with error far below ε.
+    #[inline]
+    #[must_use]
+    pub fn norm_error(&self) -> T {
+        self.q.norm_error()
+    }
+
+    /// Steps taken successfully.
+    #[inline]
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Post-step corrections applied (normalizations).
+    #[inline]
+    #[must_use]
+    pub fn corrections(&self) -> u64 {
+        self.corrections
+    }
+
+    /// The scheme.
+    #[inline]
+    #[must_use]
+    pub fn scheme(&self) -> S {
+        self.scheme
+    }
+
+    /// The stabilizer.
+    #[inline]
+    #[must_use]
+    pub fn stabilizer(&self) -> Z {
+        self.stabilizer
+    }
+}

@@ -1,0 +1,398 @@
+//! Quaternions: scalar first, Hamilton product, body-to-reference attitude.
+//!
+//! Conventions (used everywhere in the crate):
+//! - `Quat { w, x, y, z }` is `w + x i + y j + z k`, with `i² = j² = k² = ijk = −1` (Hamilton).
+//! - An attitude `q` maps body-frame vectors to the reference frame: `v_ref = q ⊗ (0, v_body) ⊗ q*`.
+//! - Body rates compose on the right: `q' = ½ q ⊗ (0, ω)`, the seed paper's eq. (1); a body-frame rotation
+//!   vector `φ` advances the attitude as `q ← q ⊗ exp_q(φ)`.
+
+use crate::{Real, Vec3};
+use core::ops::{Add, Mul, Neg, Sub};
+
+/// A quaternion `w + x i + y j + z k` (scalar first, Hamilton convention).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Quat<T> {
+    /// Scalar part.
+    pub w: T,
+    /// `i` component.
+    pub x: T,
+    /// `j` component.
+    pub y: T,
+    /// `k` component.
+    pub z: T,
+}
+
+impl<T: Real> Quat<T> {
+    /// The identity rotation `(1, 0, 0, 0)`.
+    pub const IDENTITY: Self = Self {
+        w: T::ONE,
+        x: T::ZERO,
+        y: T::ZERO,
+        z: T::ZERO,
+    };
+
+    /// The zero quaternion (not a rotation).
+    pub const ZERO: Self = Self {
+        w: T::ZERO,
+        x: T::ZERO,
+        y: T::ZERO,
+        z: T::ZERO,
+    };
+
+    /// Builds `w + x i + y j + z k`.
+    #[inline(always)]
+    #[must_use]
+    pub const fn new(w: T, x: T, y: T, z: T) -> Self {
+        Self { w, x, y, z }
+    }
+
+    /// Builds `(w, v)` from a scalar and a vector part.
+    #[inline(always)]
+    #[must_use]
+    pub const fn from_parts(w: T, v: Vec3<T>) -> Self {
+        Self {
+            w,
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+
+    /// The vector part `(x, y, z)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn vector(self) -> Vec3<T> {
+        Vec3::new(self.x, self.y, self.z)
+    }
+
+    /// Conjugate `(w, −x, −y, −z)`: the inverse rotation for a unit quaternion.
+    #[inline(always)]
+    #[must_use]
+    pub fn conjugate(self) -> Self {
+        Self::new(self.w, -self.x, -self.y, -self.z)
+    }
+
+    /// Four-dimensional dot product.
+    #[inline(always)]
+    #[must_use]
+    pub fn dot(self, o: Self) -> T {
+        self.w * o.w + self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// `|q|²` in working precision.
+    #[inline(always)]
+    #[must_use]
+    pub fn norm_squared(self) -> T {
+        self.dot(self)
+    }
+
+    /// `|q|`, computed without overflow or underflow for any finite quaternion.
+    #[must_use]
+    pub fn norm(self) -> T {
+        self.w.hypot(self.x).hypot(self.y.hypot(self.z))
+    }
+
+    /// The seed's normalization error `N = |q|² − 1` (eq. (2)), evaluated with an error far below ε
+    /// (see [`Real::sum_sq_minus_one`]).
+    #[must_use]
+    pub fn norm_error(self) -> T {
+        T::sum_sq_minus_one(self.w, self.x, self.y, self.z)
+    }
+
+    /// `true` if every component is finite.
+    #[inline(always)]
+    #[must_use]
+    pub fn is_finite(self) -> bool {
+        self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// The unit quaternion `q / |q|`, or `None` for a zero or non-finite quaternion.
+    ///
+    /// Robust for any finite non-zero input (scales by the largest component first), so tiny and huge
+    /// quaternions normalize correctly. The step path uses the cheaper [`crate::stabilize`] policies instead.
+    #[must_use]
+    pub fn normalized(self) -> Option<Self> {
+        if !self.is_finite() {
+            return None;
+        }
+        let m = self.w.abs().max(self.x.abs()).max(self.y.abs()).max(self.z.abs());
+        if m == T::ZERO {
+            return None;
+        }
+        let s = self * (T::ONE / m);
+        let n = s.norm_squared().sqrt();
+        Some(s * (T::ONE / n))
+    }
+
+    /// Inverse `q* / |q|²`, or `None` for a zero or non-finite quaternion.
+    #[must_use]
+    pub fn inverse(self) -> Option<Self> {
+        let n2 = self.norm_squared();
+        if n2 > T::ZERO && n2.is_finite() {
+            Some(self.conjugate() * (T::ONE / n2))
+        } else {
+            None
+        }
+    }
+
+    /// `q ⊗ (0, v)`: the product with a pure quaternion, 12 multiplications.
+    ///
+    /// With `v = ½ω` this is the right-hand side of the kinematic equation `q' = ½ q ⊗ (0, ω)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn mul_pure(self, v: Vec3<T>) -> Self {
+        Self {
+            w: -(self.x * v.x + self.y * v.y + self.z * v.z),
+            x: self.w * v.x + self.y * v.z - self.z * v.y,
+            y: self.w * v.y - self.x * v.z + self.z * v.x,
+            z: self.w * v.z + self.x * v.y - self.y * v.x,
+        }
+    }
+
+    /// Rotates a body-frame vector into the reference frame: `q ⊗ (0, v) ⊗ q*` (for unit `q`).
+    #[inline]
+    #[must_use]
+    pub fn rotate(self, v: Vec3<T>) -> Vec3<T> {
+        let u = self.vector();
+        let t = u.cross(v) * T::TWO;
+        v + t * self.w + u.cross(t)
+    }
+
+    /// The exponential map `exp_q(φ) = (cos(|φ|/2), sin(|φ|/2) φ/|φ|)` of a rotation vector `φ` (rad):
+    /// the unit quaternion of a rotation by `|φ|` about `φ`.
+    ///
+    /// Exact for any angle, including beyond π. Small angles use a Taylor branch (no square root, no
+    /// trigonometry) that keeps every bit of the rotation: a rotation of 1e-9 rad is 1e-9 rad, not zero.
+    #[inline]
+    #[must_use]
+    pub fn from_rotation_vector(phi: Vec3<T>) -> Self {
+        Self::exp_half(phi * T::HALF)
+    }
+
+    /// `exp((0, v)) = (cos|v|, sin|v| v/|v|)` for a half-angle vector `v` (rad).
+    #[inline]
+    #[must_use]
+    pub(crate) fn exp_half(v: Vec3<T>) -> Self {
+        let x2 = v.norm_squared();
+        let (c, s_over_x) = if x2 < T::EXP_TAYLOR_MAX_SQ {
+            // cos x = 1 − x²/2 + x⁴/24, sin x / x = 1 − x²/6 + x⁴/120 (next terms below ¼ ulp, see Real).
+            let c = T::ONE - x2 * (T::HALF - x2 * T::from_f64(1.0 / 24.0));
+            let s = T::ONE - x2 * (T::from_f64(1.0 / 6.0) - x2 * T::from_f64(1.0 / 120.0));
+            (c, s)
+        } else if x2.is_finite() {
+            let x = x2.sqrt();
+            (x.cos(), x.sin() / x)
+        } else {
+            // |v|² overflowed: recompute the norm without overflow.
+            let x = v.norm();
+            (x.cos(), x.sin() / x)
+        };
+        Self::from_parts(c, v * s_over_x)
+    }
+
+    /// The rotation vector `φ` (rad) with `exp_q(φ) = ±q`, choosing `|φ| ≤ π` (the logarithm map).
+    ///
+    /// Expects a unit quaternion; the result scales with `atan2`, so a slightly non-unit input still
+    /// gives the angle of its direction.
+    #[must_use]
+    pub fn to_rotation_vector(self) -> Vec3<T> {
+        let q = if self.w < T::ZERO { -self } else { self };
+        let u = q.vector();
+        let s = u.norm();
+        if s == T::ZERO {
+            return Vec3::ZERO;
+        }
+        u * (T::TWO * s.atan2(q.w) / s)
+    }
+
+    /// Converts each component to `f64`.
+    #[must_use]
+    pub fn to_f64(self) -> Quat<f64> {
+        Quat::new(
+            self.w.to_f64(),
+            self.x.to_f64(),
+            self.y.to_f64(),
+            self.z.to_f64(),
+        )
+    }
+
+    /// Converts each component from `f64` (rounding to nearest for `f32`).
+    #[must_use]
+    pub fn from_f64(q: Quat<f64>) -> Self {
+        Self::new(
+            T::from_f64(q.w),
+            T::from_f64(q.x),
+            T::from_f64(q.y),
+            T::from_f64(q.z),
+        )
+    }
+
+    /// The rotation angle (rad, in [0, π]) between two attitudes, treating `q` and `−q` as the same.
+    ///
+    /// Computed as `2 atan2(|vec(a* ⊗ b)|, |scalar(a* ⊗ b)|)`, accurate for tiny and near-π angles.
+    #[must_use]
+    pub fn angle_to(self, other: Self) -> T {
+        let d = self.conjugate() * other;
+        T::TWO * d.vector().norm().atan2(d.w.abs())
+    }
+}
+
+impl<T: Real> Mul for Quat<T> {
+    type Output = Self;
+    /// Hamilton product `self ⊗ o`.
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        Self {
+            w: self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
+            x: self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
+            y: self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
+            z: self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
+        }
+    }
+}
+
+impl<T: Real> Mul<T> for Quat<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn mul(self, s: T) -> Self {
+        Self::new(self.w * s, self.x * s, self.y * s, self.z * s)
+    }
+}
+
+impl<T: Real> Add for Quat<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self::new(self.w + o.w, self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<T: Real> Sub for Quat<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.w - o.w, self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<T: Real> Neg for Quat<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self::new(-self.w, -self.x, -self.y, -self.z)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mul_pure_matches_seed_equation_1() {
+        // The seed's eq. (1): q̇ = ½ Ω q with Ω's rows as printed there.
+        let q = Quat::new(0.3_f64, -0.5, 0.7, 0.4);
+        let w = [0.9_f64, -1.3, 2.1];
+        let omega = [
+            [0.0, -w[0], -w[1], -w[2]],
+            [w[0], 0.0, w[2], -w[1]],
+            [w[1], -w[2], 0.0, w[0]],
+            [w[2], w[1], -w[0], 0.0],
+        ];
+        let qv = [q.w, q.x, q.y, q.z];
+        let mut expect = [0.0; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                expect[i] += 0.5 * omega[i][j] * qv[j];
+            }
+        }
+        let got = q.mul_pure(Vec3::new(w[0], w[1], w[2]) * 0.5);
+        let full = q * Quat::new(0.0, 0.5 * w[0], 0.5 * w[1], 0.5 * w[2]);
+        for (a, b) in [got.w, got.x, got.y, got.z].iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
+        }
+        assert!((full - got).norm() < 1e-15);
+    }
+
+    #[test]
+    fn hamilton_units() {
+        let i = Quat::new(0.0_f64, 1.0, 0.0, 0.0);
+        let j = Quat::new(0.0, 0.0, 1.0, 0.0);
+        let k = Quat::new(0.0, 0.0, 0.0, 1.0);
+        assert_eq!(i * j, k);
+        assert_eq!(j * k, i);
+        assert_eq!(k * i, j);
+        assert_eq!(i * j * k, -Quat::IDENTITY);
+    }
+
+    #[test]
+    fn exp_map_keeps_tiny_rotations() {
+        // 1e-9 rad about x: the vector part must be 0.5e-9 to full precision.
+        let q = Quat::from_rotation_vector(Vec3::new(1e-9_f64, 0.0, 0.0));
+        assert_eq!(q.w, 1.0);
+        assert!((q.x - 0.5e-9).abs() <= 0.5e-9 * f64::EPSILON);
+        let q32 = Quat::from_rotation_vector(Vec3::new(1e-9_f32, 0.0, 0.0));
+        assert_eq!(q32.x, 0.5e-9_f32);
+    }
+
+    #[test]
+    fn exp_map_is_continuous_across_the_taylor_threshold() {
+        fn check<T: Real>(tol: f64) {
+            let x = T::EXP_TAYLOR_MAX_SQ.sqrt().to_f64();
+            for f in [0.999_999, 1.000_001] {
+                let v = x * f;
+                let q = Quat::<T>::exp_half(Vec3::new(T::from_f64(v), T::ZERO, T::ZERO));
+                let (c, s) = (libm::cos(v), libm::sin(v));
+                assert!((q.w.to_f64() - c).abs() <= tol, "cos at {v}");
+                assert!((q.x.to_f64() - s).abs() <= tol, "sin at {v}");
+            }
+        }
+        check::<f32>(2.0 * f32::EPSILON as f64);
+        check::<f64>(2.0 * f64::EPSILON);
+    }
+
+    #[test]
+    fn rotate_matches_sandwich_product() {
+        let q = Quat::new(0.2_f64, 0.4, -0.5, 0.74).normalized().unwrap();
+        let v = Vec3::new(1.0, -2.0, 0.5);
+        let s = q * Quat::from_parts(0.0, v) * q.conjugate();
+        let r = q.rotate(v);
+        assert!((s.vector() - r).norm() < 1e-15);
+        assert!(s.w.abs() < 1e-15);
+    }
+
+    #[test]
+    fn normalized_handles_extreme_magnitudes_and_rejects_bad_input() {
+        let tiny = Quat::new(1e-40_f32, 0.0, 0.0, 1e-40);
+        let n = tiny.normalized().unwrap();
+        assert!((n.norm_error()).abs() <= 2.0 * f32::EPSILON);
+        let huge = Quat::new(3e38_f32, 3e38, 0.0, 0.0);
+        assert!((huge.normalized().unwrap().w - core::f32::consts::FRAC_1_SQRT_2).abs() < 1e-7);
+        assert!(Quat::<f64>::ZERO.normalized().is_none());
+        assert!(Quat::new(f64::NAN, 0.0, 0.0, 0.0).normalized().is_none());
+        assert!(Quat::new(f64::INFINITY, 0.0, 0.0, 0.0).normalized().is_none());
+    }
+
+    #[test]
+    fn log_inverts_exp_up_to_pi() {
+        for angle in [1e-12_f64, 1e-3, 0.5, 2.0, 3.0, 3.14159] {
+            let axis = Vec3::new(0.48_f64, -0.6, 0.64);
+            let phi = axis * angle;
+            let back = Quat::from_rotation_vector(phi).to_rotation_vector();
+            assert!((back - phi).norm() <= 4.0 * f64::EPSILON * angle.max(1.0), "{angle}");
+        }
+        // Beyond π the logarithm returns the equivalent shorter rotation.
+        let phi = Vec3::new(0.0_f64, 0.0, 4.0);
+        let back = Quat::from_rotation_vector(phi).to_rotation_vector();
+        assert!((back.z - (4.0 - 2.0 * core::f64::consts::PI)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn angle_to_treats_sign_as_same_rotation() {
+        let a = Quat::from_rotation_vector(Vec3::new(0.1_f64, 0.2, 0.3));
+        let b = a * Quat::from_rotation_vector(Vec3::new(1e-10, 0.0, 0.0));
+        assert!((a.angle_to(b) - 1e-10).abs() < 1e-20);
+        assert!((a.angle_to(-b) - 1e-10).abs() < 1e-20);
+        assert_eq!(a.angle_to(-a), 0.0);
+    }
+}

@@ -1,0 +1,262 @@
+//! The floating-point types the library runs in: a sealed trait implemented for `f32` and `f64`.
+//!
+//! Every algorithm is generic over [`Real`]. Constants are associated consts, so no conversion runs on the
+//! step path; coefficients written as `f64` literals are converted with [`Real::from_f64`], which the
+//! compiler folds to a constant.
+//!
+//! Math backend: `libm` (correctly rounded `sqrt`; `sin`, `cos`, `atan2` within 1 ulp). On
+//! `thumbv7em-none-eabihf` `libm::sqrtf` is a software routine, not `vsqrt.f32` (see README, "Cost"); the
+//! step path avoids square roots wherever an algebraic form exists (polynomial RK steps, Taylor branch of
+//! the exponential map, first-order normalization).
+
+use core::fmt::{Debug, Display};
+use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+}
+
+/// A real number type the propagator computes in: `f32` (what firmware runs) or `f64`.
+///
+/// Sealed: the algorithms rely on IEEE 754 binary32/binary64 rounding.
+pub trait Real:
+    sealed::Sealed
+    + Copy
+    + Default
+    + Debug
+    + Display
+    + PartialEq
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + 'static
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// 1/2.
+    const HALF: Self;
+    /// π.
+    const PI: Self;
+    /// Machine epsilon: the gap between 1 and the next representable number (2⁻²³ or 2⁻⁵²).
+    const EPSILON: Self;
+    /// Largest finite value.
+    const MAX: Self;
+    /// Largest squared half-angle `x²` (rad²) for which the exponential map uses its Taylor branch.
+    ///
+    /// Chosen so that the first omitted term (x⁶/720 in cos, x⁶/5040 in sin x / x) is below a quarter ulp:
+    /// `f32`: x < 0.1, `f64`: x < 0.005.
+    const EXP_TAYLOR_MAX_SQ: Self;
+
+    /// Converts an `f64` constant (rounds to nearest for `f32`).
+    fn from_f64(v: f64) -> Self;
+    /// Widens to `f64` (exact).
+    fn to_f64(self) -> f64;
+    /// Converts an integer count (rounds to nearest).
+    fn from_u32(v: u32) -> Self;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    /// Sine (rad).
+    fn sin(self) -> Self;
+    /// Cosine (rad).
+    fn cos(self) -> Self;
+    /// Natural exponential.
+    fn exp(self) -> Self;
+    /// Four-quadrant arctangent of `self / x` (rad, in (−π, π]).
+    fn atan2(self, x: Self) -> Self;
+    /// `atan2` used by the Euler-angle conversions: `libm`, or `micromath` for `f32` with the
+    /// `micromath` feature (max error about 0.002 rad, see its documentation).
+    fn atan2_conversion(self, x: Self) -> Self;
+    /// `sqrt(self² + y²)` without undue overflow or underflow.
+    fn hypot(self, y: Self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// `true` unless NaN or ±∞.
+    fn is_finite(self) -> bool;
+    /// The larger of two numbers (NaN-ignoring like `f64::max`).
+    fn max(self, other: Self) -> Self;
+    /// `w² + x² + y² + z² − 1`, evaluated so that its own rounding error is far below ε
+    /// (`f32`: in `f64`, where the squares are exact; `f64`: compensated with `fma`).
+    /// Used for telemetry (`norm_error`), never on the step path.
+    fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
+}
+
+macro_rules! impl_real {
+    ($t:ty, $sqrt:path, $sin:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::f64::consts::PI as $t;
+            const EPSILON: Self = <$t>::EPSILON;
+            const MAX: Self = <$t>::MAX;
+            const EXP_TAYLOR_MAX_SQ: Self = $taylor;
+
+            #[inline(always)]
+            fn from_f64(v: f64) -> Self {
+                v as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn from_u32(v: u32) -> Self {
+                v as $t
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                $exp(self)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                $atan2(self, x)
+            }
+            #[inline(always)]
+            fn hypot(self, y: Self) -> Self {
+                $hypot(self, y)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                <$t>::max(self, other)
+            }
+            #[inline]
+            fn atan2_conversion(self, x: Self) -> Self {
+                $conv_atan2(self, x)
+            }
+            #[inline]
+            fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self {
+                $sum_sq(w, x, y, z)
+            }
+        }
+    };
+}
+
+impl_real!(
+    f32,
+    libm::sqrtf,
+    libm::sinf,
+    libm::cosf,
+    libm::expf,
+    libm::atan2f,
+    libm::hypotf,
+    conversion_atan2_f32,
+    sum_sq_minus_one_f32,
+    1.0e-2
+);
+impl_real!(
+    f64,
+    libm::sqrt,
+    libm::sin,
+    libm::cos,
+    libm::exp,
+    libm::atan2,
+    libm::hypot,
+    libm::atan2,
+    sum_sq_minus_one_f64,
+    2.5e-5
+);
+
+#[cfg(feature = "micromath")]
+#[inline]
+fn conversion_atan2_f32(y: f32, x: f32) -> f32 {
+    micromath::F32Ext::atan2(y, x)
+}
+
+#[cfg(not(feature = "micromath"))]
+#[inline]
+fn conversion_atan2_f32(y: f32, x: f32) -> f32 {
+    libm::atan2f(y, x)
+}
+
+/// Squares of `f32` values are exact in `f64`; the `f64` sum then carries a relative error ≤ 2⁻⁵¹.
+#[inline]
+fn sum_sq_minus_one_f32(w: f32, x: f32, y: f32, z: f32) -> f32 {
+    let (w, x, y, z) = (w as f64, x as f64, y as f64, z as f64);
+    ((((w * w - 1.0) + x * x) + y * y) + z * z) as f32
+}
+
+/// Each square as an exact pair `p + e = a²` (via `fma`), summed with Neumaier's compensation.
+#[inline]
+fn sum_sq_minus_one_f64(w: f64, x: f64, y: f64, z: f64) -> f64 {
+    let mut sum = -1.0_f64;
+    let mut comp = 0.0_f64;
+    for a in [w, x, y, z] {
+        let p = a * a;
+        let e = libm::fma(a, a, -p);
+        for term in [p, e] {
+            let t = sum + term;
+            comp += if sum.abs() >= term.abs() {
+                (sum - t) + term
+            } else {
+                (term - t) + sum
+            };
+            sum = t;
+        }
+    }
+    sum + comp
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sum_sq_minus_one_resolves_below_epsilon() {
+        // 1 + 2⁻³⁰ is representable in f64; its square minus one is 2⁻²⁹ + 2⁻⁶⁰ exactly.
+        let a = 1.0 + 2f64.powi(-30);
+        let n = f64::sum_sq_minus_one(a, 0.0, 0.0, 0.0);
+        assert_eq!(n, 2f64.powi(-29) + 2f64.powi(-60));
+        // A naive sum would return 0 here: 1 + 2⁻⁶⁰ rounds to 1.
+        let tiny = 2f64.powi(-30);
+        assert_eq!(f64::sum_sq_minus_one(1.0, tiny, 0.0, 0.0), 2f64.powi(-60));
+        let t32 = 2f32.powi(-20);
+        assert_eq!(f32::sum_sq_minus_one(1.0, t32, 0.0, 0.0), 2f32.powi(-40));
+    }
+
+    #[test]
+    fn taylor_threshold_truncation_is_below_quarter_ulp() {
+        // First omitted terms at the threshold, relative to the value (cos x ≈ 1, sin x / x ≈ 1).
+        for (x2, eps) in [
+            (f32::EXP_TAYLOR_MAX_SQ as f64, f32::EPSILON as f64),
+            (f64::EXP_TAYLOR_MAX_SQ, f64::EPSILON),
+        ] {
+            let cos_term = x2 * x2 * x2 / 720.0;
+            let sinc_term = x2 * x2 * x2 / 5040.0;
+            assert!(cos_term < eps / 4.0, "cos truncation {cos_term:e} vs eps {eps:e}");
+            assert!(sinc_term < eps / 4.0);
+        }
+    }
+}

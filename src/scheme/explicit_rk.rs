@@ -1,0 +1,146 @@
+//! The one explicit Runge–Kutta engine: every [`ButcherTableau`] is a [`Scheme`] through it.
+//!
+//! Two paths, both defined by the tableau alone:
+//! - Rate held over the step and no right-hand-side stabilizer: the step is exactly `q ← R(h·½Ω) q`, and
+//!   since `(h·½Ω)² = −x² I` this is one quaternion product `q ⊗ (C(x²), S(x²)·hω/2)` with the polynomials
+//!   `C`, `S` read off the stability polynomial at compile time. No square root, no trigonometry.
+//! - Otherwise (a varying rate, or Baumgarte's nonlinear term): the stage loop over `A`, `b`, `c`, with the
+//!   zeros of the tableau skipped at compile time.
+//!
+//! In exact arithmetic both paths give the same result for a held rate (a test checks it to rounding).
+
+use super::tableau::{rotation_polynomials, ButcherTableau, MAX_STAGES};
+use super::Scheme;
+use crate::rates::RateModel;
+use crate::stabilize::Stabilizer;
+use crate::{Quat, Real, Vec3};
+
+/// Compile-time data derived from a tableau for the held-rate path.
+trait HeldRatePolynomials: ButcherTableau {
+    /// `C(s) = Σ_j r_{2j} (−s)^j`.
+    const C_POLY: [f64; MAX_STAGES / 2 + 1] = rotation_polynomials(&Self::STABILITY_POLYNOMIAL).0;
+    /// `S(s) = Σ_j r_{2j+1} (−s)^j`.
+    const S_POLY: [f64; MAX_STAGES / 2 + 1] = rotation_polynomials(&Self::STABILITY_POLYNOMIAL).1;
+}
+impl<Tab: ButcherTableau> HeldRatePolynomials for Tab {}
+
+/// Horner evaluation in `T`, starting at the highest non-zero coefficient (folded at compile time), so a
+/// zero coefficient costs nothing and a leading 1 costs no multiplication.
+#[inline(always)]
+fn horner<T: Real, const N: usize>(p: &[f64; N], s: T) -> T {
+    let mut top = N;
+    while top > 0 && p[top - 1] == 0.0 {
+        top -= 1;
+    }
+    if top == 0 {
+        return T::ZERO;
+    }
+    let mut acc = T::from_f64(p[top - 1]);
+    let mut i = top - 1;
+    while i > 0 {
+        i -= 1;
+        acc = acc * s + T::from_f64(p[i]);
+    }
+    acc
+}
+
+/// The held-rate step `q ⊗ (C(x²), S(x²)·v)` with `v = hω/2`.
+#[inline(always)]
+fn held_rate_step<T: Real, Tab: ButcherTableau>(q: Quat<T>, v: Vec3<T>) -> Quat<T> {
+    let s = v.norm_squared();
+    let c = horner(&Tab::C_POLY, s);
+    let sv = horner(&Tab::S_POLY, s);
+    q * c + q.mul_pure(v * sv)
+}
+
+/// `Σ_j coef_j · k_j` over the non-zero coefficients, `None` if all are zero.
+#[inline(always)]
+fn weighted_sum<T: Real>(coef: &[f64; MAX_STAGES], k: &[Quat<T>; MAX_STAGES], n: usize) -> Option<Quat<T>> {
+    let mut acc: Option<Quat<T>> = None;
+    let mut j = 0;
+    while j < n {
+        let a = coef[j];
+        if a != 0.0 {
+            let term = k[j] * T::from_f64(a);
+            acc = Some(match acc {
+                None => term,
+                Some(s) => s + term,
+            });
+        }
+        j += 1;
+    }
+    acc
+}
+
+/// One explicit RK step of `q' = f(c, q)` over `h` with the tableau's stages.
+#[inline(always)]
+pub(crate) fn stage_step<T: Real, Tab: ButcherTableau, F: Fn(f64, Quat<T>) -> Quat<T>>(
+    q: Quat<T>,
+    h: T,
+    f: F,
+) -> Quat<T> {
+    let mut k = [Quat::<T>::ZERO; MAX_STAGES];
+    let mut i = 0;
+    while i < Tab::STAGES {
+        let y = match weighted_sum(&Tab::A[i], &k, i) {
+            Some(s) => q + s * h,
+            None => q,
+        };
+        k[i] = f(Tab::C[i], y);
+        i += 1;
+    }
+    match weighted_sum(&Tab::B, &k, Tab::STAGES) {
+        Some(s) => q + s * h,
+        None => q,
+    }
+}
+
+impl<Tab: ButcherTableau> Scheme for Tab {
+    #[inline(always)]
+    fn name(&self) -> &'static str {
+        Tab::NAME
+    }
+    #[inline(always)]
+    fn order(&self) -> u32 {
+        Tab::ORDER
+    }
+    #[inline(always)]
+    fn step_angle_limit(&self) -> f64 {
+        Tab::STEP_ANGLE_LIMIT
+    }
+    #[inline(always)]
+    fn real_axis_limit(&self) -> f64 {
+        Tab::REAL_AXIS_LIMIT
+    }
+    #[inline(always)]
+    fn norm_factor(&self, step_angle: f64) -> f64 {
+        super::tableau::norm_factor(&Tab::STABILITY_POLYNOMIAL, 0.5 * step_angle)
+    }
+
+    #[inline(always)]
+    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
+        &self,
+        q: Quat<T>,
+        rates: &R,
+        h: T,
+        stabilizer: &Z,
+    ) -> Quat<T> {
+        if !stabilizer.has_rhs_term() {
+            if let Some(half) = rates.held_half_rate() {
+                return held_rate_step::<T, Tab>(q, half * h);
+            }
+            return stage_step::<T, Tab, _>(q, h, |c, y| y.mul_pure(rates.half_rate_at(c)));
+        }
+        stage_step::<T, Tab, _>(q, h, |c, y| {
+            y.mul_pure(rates.half_rate_at(c)) + y * stabilizer.rhs_gain(y)
+        })
+    }
+}
+
+/// The held-rate step evaluated through the stage loop instead of the polynomial (for tests and the lab:
+/// both must agree to rounding).
+#[must_use]
+pub fn held_rate_step_by_stages<T: Real, Tab: ButcherTableau>(q: Quat<T>, w: Vec3<T>, h: T) -> Quat<T> {
+    let half = w * T::HALF;
+    stage_step::<T, Tab, _>(q, h, |_, y| y.mul_pure(half))
+}

@@ -1,0 +1,126 @@
+//! The five explicit Runge–Kutta tableaux, with their sources. Unused entries are zero.
+//!
+//! ```text
+//!  Euler          Rk2 (midpoint)    Rk3 (Kutta)            Rk4 (classic)
+//!  0 |            0  |               0  |                   0  |
+//! ---+---         1/2| 1/2           1/2| 1/2               1/2| 1/2
+//!    | 1          ---+---------      1  | -1   2            1/2| 0    1/2
+//!                    | 0    1        ---+---------------    1  | 0    0    1
+//!                                       | 1/6  2/3  1/6     ---+---------------------
+//!                                                              | 1/6  1/3  1/3  1/6
+//! ```
+//! Rk5 is the fifth-order solution of Dormand–Prince 5(4) (its first six stages; the seventh only
+//! serves the embedded error estimate).
+
+use super::tableau::{ButcherTableau, MAX_STAGES};
+
+const Z: [f64; MAX_STAGES] = [0.0; MAX_STAGES];
+
+/// Forward Euler (RK1): one stage, order 1. `|R(ix)|² = 1 + x²`: gains norm every step.
+/// Source: Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.1.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Euler;
+
+impl ButcherTableau for Euler {
+    const NAME: &'static str = "Euler";
+    const ORDER: u32 = 1;
+    const STAGES: usize = 1;
+    const C: [f64; MAX_STAGES] = Z;
+    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [Z; MAX_STAGES];
+    const B: [f64; MAX_STAGES] = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+}
+
+/// Explicit midpoint rule (RK2): two stages, order 2. `|R(ix)|² = 1 + x⁴/4`: gains norm every step.
+/// Source: Hairer, Nørsett, Wanner, *Solving ODEs I*, eq. (II.1.3) (Runge 1895).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Rk2;
+
+impl ButcherTableau for Rk2 {
+    const NAME: &'static str = "Rk2";
+    const ORDER: u32 = 2;
+    const STAGES: usize = 2;
+    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 2.0, 0.0, 0.0, 0.0, 0.0];
+    #[rustfmt::skip]
+    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+        Z,
+        [1.0 / 2.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        Z, Z, Z, Z,
+    ];
+    const B: [f64; MAX_STAGES] = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+}
+
+/// Kutta's third-order method (RK3). `|R(ix)|² = 1 − x⁴/12 + x⁶/36`: stable for `h|ω| ≤ 2√3`.
+/// Source: Kutta (1901); Hairer, Nørsett, Wanner, *Solving ODEs I*, Table II.1.1 (left).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Rk3;
+
+impl ButcherTableau for Rk3 {
+    const NAME: &'static str = "Rk3";
+    const ORDER: u32 = 3;
+    const STAGES: usize = 3;
+    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 2.0, 1.0, 0.0, 0.0, 0.0];
+    #[rustfmt::skip]
+    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+        Z,
+        [ 1.0 / 2.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [-1.0,       2.0, 0.0, 0.0, 0.0, 0.0],
+        Z, Z, Z,
+    ];
+    const B: [f64; MAX_STAGES] = [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0, 0.0, 0.0, 0.0];
+}
+
+/// The classic fourth-order Runge–Kutta method, the seed paper's integrator.
+/// `|R(ix)|² = 1 − x⁶/72 + x⁸/576 = 1 − β` (the seed's eq. (3)): stable for `h|ω| ≤ 4√2`.
+/// Source: Kutta (1901); Hairer, Nørsett, Wanner, *Solving ODEs I*, Table II.1.2 (left).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Rk4;
+
+impl ButcherTableau for Rk4 {
+    const NAME: &'static str = "Rk4";
+    const ORDER: u32 = 4;
+    const STAGES: usize = 4;
+    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 2.0, 1.0 / 2.0, 1.0, 0.0, 0.0];
+    #[rustfmt::skip]
+    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+        Z,
+        [1.0 / 2.0, 0.0,       0.0, 0.0, 0.0, 0.0],
+        [0.0,       1.0 / 2.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0,       0.0,       1.0, 0.0, 0.0, 0.0],
+        Z, Z,
+    ];
+    const B: [f64; MAX_STAGES] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 0.0, 0.0];
+}
+
+/// Fifth-order solution of Dormand–Prince 5(4), six stages.
+///
+/// Its stability polynomial is `R = T₅(z) + z⁶/600`, so `|R(ix)|² = 1 − x⁶/1800 + O(x⁸)`: it loses norm like
+/// RK4 (Cash–Karp and Butcher's RK5, with `z⁶` coefficients 1/800 and 1/1280 below 1/720, gain norm near
+/// zero instead). Stable for `h|ω|` up to [`ButcherTableau::STEP_ANGLE_LIMIT`] (≈ 2.0, see the README table).
+/// Source: Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19–26, Table 2; Hairer, Nørsett, Wanner,
+/// *Solving ODEs I*, Table II.5.2.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Rk5;
+
+impl ButcherTableau for Rk5 {
+    const NAME: &'static str = "Rk5";
+    const ORDER: u32 = 5;
+    const STAGES: usize = 6;
+    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0];
+    #[rustfmt::skip]
+    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+        Z,
+        [1.0 / 5.0,            0.0,                   0.0,                  0.0,               0.0,                 0.0],
+        [3.0 / 40.0,           9.0 / 40.0,            0.0,                  0.0,               0.0,                 0.0],
+        [44.0 / 45.0,          -56.0 / 15.0,          32.0 / 9.0,           0.0,               0.0,                 0.0],
+        [19372.0 / 6561.0,     -25360.0 / 2187.0,     64448.0 / 6561.0,     -212.0 / 729.0,    0.0,                 0.0],
+        [9017.0 / 3168.0,      -355.0 / 33.0,         46732.0 / 5247.0,     49.0 / 176.0,      -5103.0 / 18656.0,   0.0],
+    ];
+    #[rustfmt::skip]
+    const B: [f64; MAX_STAGES] =
+        [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0];
+}

@@ -1,0 +1,58 @@
+//! Baumgarte stabilization: the seed's eq. (7), `q' = ½(Ω − 4kN·E) q`, a term of the right-hand side.
+
+use super::Stabilizer;
+use crate::{Error, Quat, Real};
+
+/// Baumgarte stabilization with gain `k` (1/s): the right-hand side becomes `½ q ⊗ (0, ω) − 2kN q`
+/// with `N = |q|² − 1`, evaluated inside every Runge–Kutta stage (not a post-step correction).
+///
+/// In exact arithmetic `N' = −4kN(1 + N)` (the seed's eq. (8)). Under an explicit RK scheme the seed shows
+/// (and the tests reproduce) a jump on the first step and convergence to a wrong `N∞ ≠ 0` that depends on
+/// k, H and |ω|; only two tuned values of k give `N∞ ≈ 0`. Under [`crate::scheme::ExpMap`] the radial term
+/// commutes with the rotation and is integrated exactly, so `N` decays as eq. (8) says.
+///
+/// A step needs `4kh` inside the scheme's real-axis stability interval
+/// ([`crate::scheme::Scheme::real_axis_limit`]); beyond it the propagator refuses the step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Baumgarte<T> {
+    /// Gain `k` (1/s), `k ≥ 0`.
+    pub k: T,
+}
+
+impl<T: Real> Stabilizer<T> for Baumgarte<T> {
+    fn validate(&self) -> Result<(), Error> {
+        if self.k.is_finite() && self.k >= T::ZERO {
+            Ok(())
+        } else {
+            Err(Error::InvalidStabilizer)
+        }
+    }
+    #[inline(always)]
+    fn has_rhs_term(&self) -> bool {
+        true
+    }
+    /// `σ = −2kN`, so that `σ q = ½(−4kN E) q`.
+    #[inline(always)]
+    fn rhs_gain(&self, q: Quat<T>) -> T {
+        let n = q.norm_squared() - T::ONE;
+        -(T::TWO * self.k) * n
+    }
+    #[inline(always)]
+    fn norm_stiffness(&self) -> T {
+        T::from_f64(4.0) * self.k
+    }
+    /// Exact solution of `n' = −4k(n − 1)n` for `n = |q|²` (logistic):
+    /// `n(h) = n₀ / (n₀ + (1 − n₀) e^{−4kh})`; returns `√(n(h)/n₀)`.
+    #[inline]
+    fn radial_flow_scale(&self, q: Quat<T>, h: T) -> T {
+        let n0 = q.norm_squared();
+        let decay = (-(T::from_f64(4.0) * self.k * h)).exp();
+        let n1 = n0 / (n0 + (T::ONE - n0) * decay);
+        (n1 / n0).sqrt()
+    }
+    #[inline(always)]
+    fn after_step(&self, q: Quat<T>, _pending: u32) -> (Quat<T>, bool) {
+        (q, false)
+    }
+}

@@ -1,0 +1,133 @@
+//! Three-vectors: body rates (rad/s), rotation vectors (rad), axes.
+
+use crate::Real;
+use core::ops::{Add, AddAssign, Mul, Neg, Sub};
+
+/// A 3-vector `(x, y, z)`. Rates are body-frame rad/s; rotation vectors are rad.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Vec3<T> {
+    /// First component.
+    pub x: T,
+    /// Second component.
+    pub y: T,
+    /// Third component.
+    pub z: T,
+}
+
+impl<T: Real> Vec3<T> {
+    /// The zero vector.
+    pub const ZERO: Self = Self {
+        x: T::ZERO,
+        y: T::ZERO,
+        z: T::ZERO,
+    };
+
+    /// Builds `(x, y, z)`.
+    #[inline(always)]
+    #[must_use]
+    pub const fn new(x: T, y: T, z: T) -> Self {
+        Self { x, y, z }
+    }
+
+    /// Dot product.
+    #[inline(always)]
+    #[must_use]
+    pub fn dot(self, o: Self) -> T {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Cross product `self × o` (right-handed).
+    #[inline(always)]
+    #[must_use]
+    pub fn cross(self, o: Self) -> Self {
+        Self {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+
+    /// Squared Euclidean norm.
+    #[inline(always)]
+    #[must_use]
+    pub fn norm_squared(self) -> T {
+        self.dot(self)
+    }
+
+    /// Euclidean norm, computed without overflow for any finite vector.
+    #[inline]
+    #[must_use]
+    pub fn norm(self) -> T {
+        self.x.hypot(self.y).hypot(self.z)
+    }
+
+    /// `true` if every component is finite.
+    #[inline(always)]
+    #[must_use]
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// The vector scaled to unit length, or `None` if it is zero or not finite.
+    #[must_use]
+    pub fn normalized(self) -> Option<Self> {
+        let n = self.norm();
+        if n > T::ZERO && n.is_finite() {
+            Some(self * (T::ONE / n))
+        } else {
+            None
+        }
+    }
+
+    /// Converts each component to `f64`.
+    #[must_use]
+    pub fn to_f64(self) -> Vec3<f64> {
+        Vec3::new(self.x.to_f64(), self.y.to_f64(), self.z.to_f64())
+    }
+
+    /// Converts each component from `f64` (rounding to nearest for `f32`).
+    #[must_use]
+    pub fn from_f64(v: Vec3<f64>) -> Self {
+        Self::new(T::from_f64(v.x), T::from_f64(v.y), T::from_f64(v.z))
+    }
+}
+
+impl<T: Real> Add for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<T: Real> AddAssign for Vec3<T> {
+    #[inline(always)]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+
+impl<T: Real> Sub for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<T: Real> Neg for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self::new(-self.x, -self.y, -self.z)
+    }
+}
+
+impl<T: Real> Mul<T> for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn mul(self, s: T) -> Self {
+        Self::new(self.x * s, self.y * s, self.z * s)
+    }
+}
