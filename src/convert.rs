@@ -107,9 +107,16 @@ impl<T: Real> Quat<T> {
 
     /// Unit quaternion (with `w ≥ 0`) of a rotation matrix, by Shepperd's method (the largest of
     /// `1 + trace`, `1 + 2R₀₀ − trace`, … is used as the pivot, so no branch loses precision).
-    /// `None` if the matrix has non-finite entries or is too far from a rotation to give a quaternion.
+    /// `None` if an entry is not finite or `det R ≤ ½` (singular, a reflection, or far from any rotation);
+    /// a nearly orthonormal matrix gives the quaternion of a nearby rotation.
     #[must_use]
     pub fn from_rotation_matrix(r: [[T; 3]; 3]) -> Option<Self> {
+        let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
+            - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
+            + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+        if !(det > T::HALF) || !det.is_finite() {
+            return None;
+        }
         let t = r[0][0] + r[1][1] + r[2][2];
         let one = T::ONE;
         let cands = [
@@ -128,7 +135,7 @@ impl<T: Real> Quat<T> {
         if !(p > T::ZERO) || !p.is_finite() {
             return None;
         }
-        let s = p.sqrt(); // 4 |q_k| · ½ · … : s = 2|q_k|
+        let s = p.sqrt(); // s = 2|q_k|
         let f = T::HALF / s;
         let q = match k {
             0 => Self::new(

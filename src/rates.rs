@@ -166,7 +166,8 @@ impl<T: Real> RateModel<T> for Quadratic<T> {
     /// and the commutator term from the end samples, whose error is O(h⁵)).
     #[inline(always)]
     fn half_rotation_vector(&self, h: T) -> Vec3<T> {
-        let simpson = (self.h0 + self.hm * T::from_f64(4.0) + self.h1) * (h * T::from_f64(1.0 / 6.0));
+        let simpson =
+            (self.h0 + self.hm * T::from_f64(4.0) + self.h1) * (h * T::from_f64(1.0 / 6.0));
         let comm = self.h0.cross(self.h1) * (h * h * T::from_f64(1.0 / 6.0));
         simpson + comm
     }

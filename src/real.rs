@@ -255,7 +255,10 @@ mod tests {
         ] {
             let cos_term = x2 * x2 * x2 / 720.0;
             let sinc_term = x2 * x2 * x2 / 5040.0;
-            assert!(cos_term < eps / 4.0, "cos truncation {cos_term:e} vs eps {eps:e}");
+            assert!(
+                cos_term < eps / 4.0,
+                "cos truncation {cos_term:e} vs eps {eps:e}"
+            );
             assert!(sinc_term < eps / 4.0);
         }
     }

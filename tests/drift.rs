@@ -40,7 +40,11 @@ fn check_row<T: Real>(m: Method, policy: Policy<T>) -> DriftRow {
                 assert!(f > 1.0, "{label}");
                 let predicted = 2.0 * T::MAX.to_f64().ln() / f.ln();
                 let rel = (row.steps as f64 - predicted).abs() / predicted;
-                assert!(rel < 1e-2, "{label}: overflow at {} vs {predicted}", row.steps);
+                assert!(
+                    rel < 1e-2,
+                    "{label}: overflow at {} vs {predicted}",
+                    row.steps
+                );
             } else {
                 // |ln(1 + N_n) − n ln F| ≤ n · STEP_ROUNDING_EPS · ε.
                 let dev = (row.final_n.ln_1p() - STEPS as f64 * f.ln()).abs();
@@ -49,21 +53,33 @@ fn check_row<T: Real>(m: Method, policy: Policy<T>) -> DriftRow {
             }
         }
         Policy::Normalize => {
-            assert!(row.max_abs_n <= NORMALIZED_EPS * eps, "{label}: {:e}", row.max_abs_n);
+            assert!(
+                row.max_abs_n <= NORMALIZED_EPS * eps,
+                "{label}: {:e}",
+                row.max_abs_n
+            );
         }
         Policy::FirstOrder => {
             // One FirstOrder map takes N to −¾N² − ¼N³. Before it N = F(1 + N_prev) − 1 = d + N_prev(1 + d)
             // plus rounding, where the carried residual |N_prev| ≤ ¾·nb² ≤ d² (at a fixed point of the map).
             let nb = d.abs() + d * d + (STEP_ROUNDING_EPS + NORMALIZED_EPS) * eps;
             let bound = 0.75 * nb * nb + 0.25 * nb.powi(3) + NORMALIZED_EPS * eps;
-            assert!(row.max_abs_n <= bound, "{label}: {:e} > {bound:e}", row.max_abs_n);
+            assert!(
+                row.max_abs_n <= bound,
+                "{label}: {:e} > {bound:e}",
+                row.max_abs_n
+            );
         }
         Policy::Every(n) => {
             // At most n unstabilized steps since the last exact normalization.
             let bound = (f.powi(n as i32) - 1.0).abs()
                 + n as f64 * STEP_ROUNDING_EPS * eps
                 + NORMALIZED_EPS * eps;
-            assert!(row.max_abs_n <= bound, "{label}: {:e} > {bound:e}", row.max_abs_n);
+            assert!(
+                row.max_abs_n <= bound,
+                "{label}: {:e} > {bound:e}",
+                row.max_abs_n
+            );
         }
         Policy::Baumgarte { k } => {
             let kappa = k.to_f64() * STEP;
@@ -78,15 +94,21 @@ fn check_row<T: Real>(m: Method, policy: Policy<T>) -> DriftRow {
                 let noise = STEP_ROUNDING_EPS * eps / (1.0 - contraction);
                 let lo = n_tail.iter().cloned().fold(f64::INFINITY, f64::min);
                 let hi = n_tail.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-                assert!(hi - lo <= 2.0 * noise, "{label}: not settled {lo:e}..{hi:e}");
+                assert!(
+                    hi - lo <= 2.0 * noise,
+                    "{label}: not settled {lo:e}..{hi:e}"
+                );
                 // The wrong N∞ is the scheme's, not rounding's: asserted where the noise floor is far below it
                 // (f64). In f32 some N∞ (Rk5: 1.3e-7) sit under f32's noise; the caller checks f32 ≈ f64 instead.
                 if eps < 1e-10 {
-                    assert!(row.final_n.abs() > 1e3 * noise, "{label}: N∞ {:e}", row.final_n);
+                    assert!(
+                        row.final_n.abs() > 1e3 * noise,
+                        "{label}: N∞ {:e}",
+                        row.final_n
+                    );
                 }
             }
         }
-        _ => unreachable!(),
     }
     row
 }
@@ -132,5 +154,9 @@ fn f64_state_exactness_on_constant_rate() {
     // ExpMap is exact for a constant rate: after 10⁶ steps of 0.2 rad the f64 attitude error is rounding
     // only: a random walk of ~ε per step, so well under 10⁶·ε.
     let r = run::<f64>(Method::ExpMap, Policy::Normalize, STEPS, |_, _| {});
-    assert!(r.attitude_error < STEPS as f64 * f64::EPSILON, "{:e}", r.attitude_error);
+    assert!(
+        r.attitude_error < STEPS as f64 * f64::EPSILON,
+        "{:e}",
+        r.attitude_error
+    );
 }

@@ -164,7 +164,11 @@ fn order_on_constant_rate_every_scheme_and_input_model() {
                 // Exact: the error is rounding only, whatever the step.
                 for n in [3usize, 17, 100] {
                     let e = run(m, input, &reference, &|_| w, 1.3, n);
-                    assert!(e.quaternion < 64.0 * f64::EPSILON * n as f64, "{n}: {}", e.quaternion);
+                    assert!(
+                        e.quaternion < 64.0 * f64::EPSILON * n as f64,
+                        "{n}: {}",
+                        e.quaternion
+                    );
                 }
                 continue;
             }

@@ -60,7 +60,15 @@ fn closed_form_factor(m: Method, x: f64) -> f64 {
         Method::Rk3 => &[1.0, 1.0, 0.5, 1.0 / 6.0],
         Method::Rk4 => &[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0],
         // Dormand–Prince's fifth-order solution: T₅(z) + z⁶/600.
-        Method::Rk5 => &[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 600.0],
+        Method::Rk5 => &[
+            1.0,
+            1.0,
+            0.5,
+            1.0 / 6.0,
+            1.0 / 24.0,
+            1.0 / 120.0,
+            1.0 / 600.0,
+        ],
         Method::ExpMap => return 1.0,
     };
     let (mut re, mut im) = (0.0, 0.0);
@@ -146,9 +154,9 @@ fn seed_section3_baumgarte_jumps_then_settles_on_a_wrong_norm() {
         assert_eq!(p.norm_error(), 0.0, "N₀ = 0");
         p.step_hold(Vec3::new(0.0, 0.0, 1.0), h).unwrap();
         let n1 = p.norm_error();
-        let n1_formula = -x.powi(6) / 72.0 + kappa * x.powi(4) / 12.0
-            + 5.0 / 12.0 * kappa * kappa * x.powi(4)
-            - 4.0 / 3.0 * kappa.powi(3) * x * x;
+        let n1_formula =
+            -x.powi(6) / 72.0 + kappa * x.powi(4) / 12.0 + 5.0 / 12.0 * kappa * kappa * x.powi(4)
+                - 4.0 / 3.0 * kappa.powi(3) * x * x;
         // The jump: clearly non-zero, and as the leading-order formula says (the omitted terms are
         // O(x⁸, κx⁶, κ⁴x²), below 2% of N₁ at these parameters).
         assert!(n1.abs() > 1e3 * f64::EPSILON, "N1 = {n1:e}");
@@ -205,7 +213,10 @@ fn check_normalizer<T: Real, Z: Stabilizer<T>>(z: Z, label: &str) {
             p.step_hold(w, h).unwrap();
             worst = worst.max(p.norm_error().to_f64().abs());
         }
-        println!("{label} {m:?}: max |N| = {worst:.3e} = {:.2} eps", worst / eps);
+        println!(
+            "{label} {m:?}: max |N| = {worst:.3e} = {:.2} eps",
+            worst / eps
+        );
         assert!(worst <= 4.0 * eps, "{label} {m:?}: {worst:e}");
     }
 }
@@ -222,8 +233,8 @@ fn normalize_and_first_order_hold_norm_within_4_eps_over_a_million_steps() {
 
 #[test]
 fn tableau_shortcut_for_held_rate_equals_the_stage_loop() {
-    use quatprop::scheme::held_rate_step_by_stages;
     use quatprop::rates::Hold;
+    use quatprop::scheme::held_rate_step_by_stages;
     fn check<Tab: quatprop::scheme::ButcherTableau>() {
         let q = Quat::new(0.6_f64, -0.2, 0.7, 0.33);
         for hw in [1e-6, 0.01, 0.3, 1.5] {

@@ -55,7 +55,11 @@ fn held_rate_step<T: Real, Tab: ButcherTableau>(q: Quat<T>, v: Vec3<T>) -> Quat<
 
 /// `Σ_j coef_j · k_j` over the non-zero coefficients, `None` if all are zero.
 #[inline(always)]
-fn weighted_sum<T: Real>(coef: &[f64; MAX_STAGES], k: &[Quat<T>; MAX_STAGES], n: usize) -> Option<Quat<T>> {
+fn weighted_sum<T: Real>(
+    coef: &[f64; MAX_STAGES],
+    k: &[Quat<T>; MAX_STAGES],
+    n: usize,
+) -> Option<Quat<T>> {
     let mut acc: Option<Quat<T>> = None;
     let mut j = 0;
     while j < n {
@@ -140,7 +144,11 @@ impl<Tab: ButcherTableau> Scheme for Tab {
 /// The held-rate step evaluated through the stage loop instead of the polynomial (for tests and the lab:
 /// both must agree to rounding).
 #[must_use]
-pub fn held_rate_step_by_stages<T: Real, Tab: ButcherTableau>(q: Quat<T>, w: Vec3<T>, h: T) -> Quat<T> {
+pub fn held_rate_step_by_stages<T: Real, Tab: ButcherTableau>(
+    q: Quat<T>,
+    w: Vec3<T>,
+    h: T,
+) -> Quat<T> {
     let half = w * T::HALF;
     stage_step::<T, Tab, _>(q, h, |_, y| y.mul_pure(half))
 }

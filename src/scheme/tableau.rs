@@ -31,8 +31,10 @@ pub trait ButcherTableau: Copy + Default {
     /// Coefficients `r_0 … r_s` of the stability polynomial `R(z)`.
     /// `r_m = 1/m!` exactly for `m ≤ ORDER` (the order conditions imply it; the tests check the tableau
     /// agrees to rounding); higher coefficients are `bᵀ A^(m−1) 𝟙` computed from the tableau.
-    const STABILITY_POLYNOMIAL: [f64; MAX_STAGES + 1] =
-        exact_low_order(stability_polynomial(&Self::A, &Self::B, Self::STAGES), Self::ORDER);
+    const STABILITY_POLYNOMIAL: [f64; MAX_STAGES + 1] = exact_low_order(
+        stability_polynomial(&Self::A, &Self::B, Self::STAGES),
+        Self::ORDER,
+    );
     /// Largest admitted step angle `h·|ω|` (rad), see [`step_angle_limit`].
     const STEP_ANGLE_LIMIT: f64 = step_angle_limit(&Self::STABILITY_POLYNOMIAL);
     /// Largest `h·λ` with `|R(−hλ)| ≤ 1` on the negative real axis, see [`real_axis_limit`].

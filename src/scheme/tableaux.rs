@@ -124,3 +124,111 @@ impl ButcherTableau for Rk5 {
     const B: [f64; MAX_STAGES] =
         [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0];
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scheme::tableau::stability_polynomial;
+
+    type V = [f64; MAX_STAGES];
+
+    fn dot(a: &V, b: &V) -> f64 {
+        a.iter().zip(b).map(|(x, y)| x * y).sum()
+    }
+    fn had(a: &V, b: &V) -> V {
+        core::array::from_fn(|i| a[i] * b[i])
+    }
+    fn mat(a: &[[f64; MAX_STAGES]; MAX_STAGES], v: &V) -> V {
+        core::array::from_fn(|i| dot(&a[i], v))
+    }
+
+    /// Residuals of the order conditions for trees of order 1 … 5 (Butcher; Hairer–Nørsett–Wanner Table II.2.2),
+    /// grouped by order.
+    fn order_condition_residuals<Tab: ButcherTableau>() -> [[f64; 9]; 5] {
+        let (a, b, c) = (&Tab::A, &Tab::B, &Tab::C);
+        let one = [1.0; MAX_STAGES];
+        let c2 = had(c, c);
+        let c3 = had(&c2, c);
+        let ac = mat(a, c);
+        let ac2 = mat(a, &c2);
+        let aac = mat(a, &ac);
+        let mut r = [[0.0; 9]; 5];
+        r[0][0] = dot(b, &one) - 1.0;
+        r[1][0] = dot(b, c) - 1.0 / 2.0;
+        r[2][0] = dot(b, &c2) - 1.0 / 3.0;
+        r[2][1] = dot(b, &ac) - 1.0 / 6.0;
+        r[3][0] = dot(b, &c3) - 1.0 / 4.0;
+        r[3][1] = dot(b, &had(c, &ac)) - 1.0 / 8.0;
+        r[3][2] = dot(b, &ac2) - 1.0 / 12.0;
+        r[3][3] = dot(b, &aac) - 1.0 / 24.0;
+        r[4][0] = dot(b, &had(&c3, c)) - 1.0 / 5.0;
+        r[4][1] = dot(b, &had(&c2, &ac)) - 1.0 / 10.0;
+        r[4][2] = dot(b, &had(c, &ac2)) - 1.0 / 15.0;
+        r[4][3] = dot(b, &had(c, &aac)) - 1.0 / 30.0;
+        r[4][4] = dot(b, &had(&ac, &ac)) - 1.0 / 20.0;
+        r[4][5] = dot(b, &mat(a, &c3)) - 1.0 / 20.0;
+        r[4][6] = dot(b, &mat(a, &had(c, &ac))) - 1.0 / 40.0;
+        r[4][7] = dot(b, &mat(a, &ac2)) - 1.0 / 60.0;
+        r[4][8] = dot(b, &mat(a, &aac)) - 1.0 / 120.0;
+        r
+    }
+
+    fn check<Tab: ButcherTableau>() {
+        // Row sums: c_i = Σ_j a_ij.
+        for i in 0..Tab::STAGES {
+            let s: f64 = Tab::A[i].iter().sum();
+            assert!((s - Tab::C[i]).abs() < 1e-14, "{} row {i}", Tab::NAME);
+        }
+        // Explicit: A strictly lower triangular; unused entries zero.
+        for i in 0..MAX_STAGES {
+            for j in i..MAX_STAGES {
+                assert_eq!(Tab::A[i][j], 0.0, "{} a[{i}][{j}]", Tab::NAME);
+            }
+            if i >= Tab::STAGES {
+                assert_eq!(Tab::B[i], 0.0);
+                assert_eq!(Tab::C[i], 0.0);
+            }
+        }
+        let r = order_condition_residuals::<Tab>();
+        for (k, group) in r.iter().enumerate() {
+            let order = k as u32 + 1;
+            let worst = group.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            if order <= Tab::ORDER {
+                assert!(
+                    worst < 1e-14,
+                    "{}: order-{order} condition off by {worst:e}",
+                    Tab::NAME
+                );
+            } else if order == Tab::ORDER + 1 {
+                assert!(
+                    worst > 1e-6,
+                    "{} satisfies order {order}: its order is understated",
+                    Tab::NAME
+                );
+            }
+        }
+        // The stability polynomial computed from the tableau agrees with the exact 1/m! used by the crate.
+        let raw = stability_polynomial(&Tab::A, &Tab::B, Tab::STAGES);
+        for (m, (x, y)) in raw.iter().zip(Tab::STABILITY_POLYNOMIAL.iter()).enumerate() {
+            assert!((x - y).abs() < 1e-15, "{} r{m}: {x} vs {y}", Tab::NAME);
+        }
+    }
+
+    #[test]
+    fn tableaux_satisfy_their_order_conditions_and_no_more() {
+        check::<Euler>();
+        check::<Rk2>();
+        check::<Rk3>();
+        check::<Rk4>();
+        check::<Rk5>();
+    }
+
+    #[test]
+    fn dormand_prince_sixth_coefficient_is_one_over_600() {
+        // R(z) = T₅(z) + z⁶/600: γ = 1/600 > 1/720, so |R(ix)|² = 1 − x⁶/1800 + … loses norm near zero.
+        let r = Rk5::STABILITY_POLYNOMIAL;
+        assert!((r[6] - 1.0 / 600.0).abs() < 1e-17);
+        let dev = crate::scheme::tableau::norm_factor_deviation(&r);
+        assert!((dev[3] + 1.0 / 1800.0).abs() < 1e-16, "{}", dev[3]);
+    }
+}

@@ -1,7 +1,6 @@
 //! Exact reference motions and helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use quatprop::rates::{Hold, Linear, Quadratic, RateModel};
 use quatprop::scheme::Scheme;
 use quatprop::stabilize::Stabilizer;
 use quatprop::{Propagator, Quat, Real, Vec3};
@@ -66,23 +65,6 @@ pub fn step<T: Real, S: Scheme, Z: Stabilizer<T>>(
         Input::Linear => p.step_linear(w(t), w(t + h), dt),
         Input::Mid => p.step_mid(w(t), w(t + 0.5 * h), w(t + h), dt),
     }
-}
-
-/// The same rate models as the propagator uses, built from a sampled rate (for calling `Scheme::advance`).
-pub fn rates_model<T: Real>(
-    input: Input,
-    rate: &dyn Fn(f64) -> Vec3<f64>,
-    t: f64,
-    h: f64,
-) -> Box<dyn Fn(&mut dyn FnMut(&dyn RateModel<T>))> {
-    let w0 = Vec3::<T>::from_f64(rate(t));
-    let wm = Vec3::<T>::from_f64(rate(t + 0.5 * h));
-    let w1 = Vec3::<T>::from_f64(rate(t + h));
-    Box::new(move |f| match input {
-        Input::Hold => f(&Hold::new(w0)),
-        Input::Linear => f(&Linear::new(w0, w1)),
-        Input::Mid => f(&Quadratic::new(w0, wm, w1)),
-    })
 }
 
 /// Propagates from `reference(0)` over `[0, t_end]` in `n` steps and returns the attitude error (rad) at the end.
