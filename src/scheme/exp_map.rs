@@ -35,9 +35,8 @@ impl Scheme for ExpMap {
     fn real_axis_limit(&self) -> f64 {
         f64::INFINITY
     }
-    #[inline(always)]
-    fn norm_factor(&self, _step_angle: f64) -> f64 {
-        1.0
+    fn norm_change(&self, _step_angle: f64) -> f64 {
+        0.0
     }
     #[inline(always)]
     fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(

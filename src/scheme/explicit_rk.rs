@@ -116,9 +116,9 @@ impl<Tab: ButcherTableau> Scheme for Tab {
     fn real_axis_limit(&self) -> f64 {
         Tab::REAL_AXIS_LIMIT
     }
-    #[inline(always)]
-    fn norm_factor(&self, step_angle: f64) -> f64 {
-        super::tableau::norm_factor(&Tab::STABILITY_POLYNOMIAL, 0.5 * step_angle)
+    fn norm_change(&self, step_angle: f64) -> f64 {
+        let x = 0.5 * step_angle;
+        super::tableau::poly_eval(&Tab::NORM_CHANGE_POLYNOMIAL, x * x)
     }
 
     #[inline(always)]

@@ -43,8 +43,14 @@ pub trait Scheme: Copy {
     /// End of the stability interval on the negative real axis; Baumgarte's `4kh` must stay below it.
     fn real_axis_limit(&self) -> f64;
 
-    /// Per-step factor of `|q|²` for a held rate with step angle `h|ω|` (rad) and no stabilization.
-    fn norm_factor(&self, step_angle: f64) -> f64;
+    /// `|R(ix)|² − 1` at `x = h|ω|/2`: the per-step relative change of `|q|²` for a held rate with step angle
+    /// `h|ω|` (rad) and no stabilization, evaluated from its own polynomial in `x²` (no cancellation).
+    fn norm_change(&self, step_angle: f64) -> f64;
+
+    /// Per-step factor `|R(ix)|²` of `|q|²` for a held rate with step angle `h|ω|` (rad), no stabilization.
+    fn norm_factor(&self, step_angle: f64) -> f64 {
+        1.0 + self.norm_change(step_angle)
+    }
 
     /// Advances `q` over one step of length `h` (s) with the rates of `rates`. No checks: the propagator
     /// validates inputs first; the lab calls this directly to explore beyond the bounds.
@@ -131,8 +137,8 @@ impl Scheme for Method {
     fn real_axis_limit(&self) -> f64 {
         dispatch!(self, s => s.real_axis_limit())
     }
-    fn norm_factor(&self, step_angle: f64) -> f64 {
-        dispatch!(self, s => s.norm_factor(step_angle))
+    fn norm_change(&self, step_angle: f64) -> f64 {
+        dispatch!(self, s => s.norm_change(step_angle))
     }
     #[inline]
     fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(

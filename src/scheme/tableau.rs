@@ -35,6 +35,9 @@ pub trait ButcherTableau: Copy + Default {
         stability_polynomial(&Self::A, &Self::B, Self::STAGES),
         Self::ORDER,
     );
+    /// Coefficients of `|R(ix)|² − 1` as a polynomial in `x²`, see [`norm_factor_deviation`].
+    const NORM_CHANGE_POLYNOMIAL: [f64; MAX_STAGES + 1] =
+        norm_factor_deviation(&Self::STABILITY_POLYNOMIAL);
     /// Largest admitted step angle `h·|ω|` (rad), see [`step_angle_limit`].
     const STEP_ANGLE_LIMIT: f64 = step_angle_limit(&Self::STABILITY_POLYNOMIAL);
     /// Largest `h·λ` with `|R(−hλ)| ≤ 1` on the negative real axis, see [`real_axis_limit`].
