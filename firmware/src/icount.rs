@@ -1,0 +1,53 @@
+//! Instruction counting with SysTick under QEMU's `-icount shift=N` (deterministic virtual time).
+//!
+//! On the mps2 boards SysTick counts the 25 MHz core clock. With `-icount shift=10` every instruction
+//! advances virtual time by 2¹⁰ ns, so one instruction is 25.6 ticks and
+//! `instructions = ticks · 40 / 1024`. The 24-bit counter wraps after 2²⁴ / 25.6 ≈ 655 000 instructions:
+//! measure shorter regions. These are executed instructions, not Cortex-M4 cycles.
+
+use cortex_m::peripheral::{syst::SystClkSource, SYST};
+
+/// The `-icount shift` the runner passes to QEMU for the bench.
+pub const ICOUNT_SHIFT: u32 = 10;
+/// SysTick clock of the mps2 boards (Hz).
+const SYSTICK_HZ: u64 = 25_000_000;
+
+/// A free-running SysTick on the core clock.
+pub struct Counter {
+    syst: SYST,
+}
+
+impl Counter {
+    /// Takes SysTick and starts it counting down from 2²⁴ − 1.
+    pub fn new(mut syst: SYST) -> Self {
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(0x00FF_FFFF);
+        syst.clear_current();
+        syst.enable_counter();
+        Self { syst }
+    }
+
+    /// Current counter value (counts down).
+    #[inline(always)]
+    pub fn now(&self) -> u32 {
+        SYST::get_current()
+    }
+
+    /// Ticks elapsed from `start` to `end` (one wrap at most).
+    #[inline(always)]
+    pub fn ticks(start: u32, end: u32) -> u32 {
+        start.wrapping_sub(end) & 0x00FF_FFFF
+    }
+
+    /// Converts ticks to executed instructions (rounded to nearest).
+    pub fn instructions(ticks: u32) -> u32 {
+        let ns_per_tick = 1_000_000_000 / SYSTICK_HZ; // 40
+        let ns = ticks as u64 * ns_per_tick;
+        ((ns + (1 << (ICOUNT_SHIFT - 1))) >> ICOUNT_SHIFT) as u32
+    }
+
+    /// Gives SysTick back.
+    pub fn free(self) -> SYST {
+        self.syst
+    }
+}
