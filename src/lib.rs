@@ -9,10 +9,14 @@
 
 mod convert;
 mod error;
+#[cfg(feature = "embedded-hal")]
+#[cfg_attr(docsrs, doc(cfg(feature = "embedded-hal")))]
+pub mod gyro;
 mod propagator;
 mod quat;
 pub mod rates;
 mod real;
+mod sample;
 pub mod scheme;
 pub mod stabilize;
 mod vec3;
@@ -22,4 +26,5 @@ pub use error::Error;
 pub use propagator::Propagator;
 pub use quat::Quat;
 pub use real::Real;
+pub use sample::GyroSample;
 pub use vec3::Vec3;

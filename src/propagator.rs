@@ -3,7 +3,7 @@
 use crate::rates::{Hold, Linear, Quadratic, RateModel};
 use crate::scheme::Scheme;
 use crate::stabilize::Stabilizer;
-use crate::{Error, Quat, Real, Vec3};
+use crate::{Error, GyroSample, Quat, Real, Vec3};
 
 /// Propagates a body-to-reference attitude quaternion from body-frame gyro rates.
 ///
@@ -20,6 +20,7 @@ pub struct Propagator<T, S, Z> {
     stabilizer: Z,
     steps: u64,
     corrections: u64,
+    saturated: u64,
     pending: u32,
 }
 
@@ -37,6 +38,7 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
             stabilizer,
             steps: 0,
             corrections: 0,
+            saturated: 0,
             pending: 0,
         })
     }
@@ -65,6 +67,35 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
     #[inline]
     pub fn step_hold(&mut self, w: Vec3<T>, dt: T) -> Result<(), Error> {
         self.step_with(&Hold::new(w), dt)
+    }
+
+    /// [`Propagator::step_hold`] with a sensor sample: integrated even if saturated, and counted then
+    /// ([`Propagator::saturated_samples`]). A refused step counts nothing.
+    ///
+    /// # Errors
+    /// See [`Propagator::step_with`].
+    #[inline]
+    pub fn step_hold_sample(&mut self, s: GyroSample<T>, dt: T) -> Result<(), Error> {
+        self.step_hold(s.rate, dt)?;
+        self.saturated += s.saturated as u64;
+        Ok(())
+    }
+
+    /// [`Propagator::step_linear`] between the previous and the current sensor sample. The current
+    /// sample's saturation is counted (each sample once, as it arrives); a refused step counts nothing.
+    ///
+    /// # Errors
+    /// See [`Propagator::step_with`].
+    #[inline]
+    pub fn step_linear_samples(
+        &mut self,
+        previous: GyroSample<T>,
+        current: GyroSample<T>,
+        dt: T,
+    ) -> Result<(), Error> {
+        self.step_linear(previous.rate, current.rate, dt)?;
+        self.saturated += current.saturated as u64;
+        Ok(())
     }
 
     /// One step of `dt` (s) with the rate linear from `w_start` to `w_end` (rad/s, samples at the step's ends).
@@ -104,11 +135,13 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
     /// In every case the state is unchanged.
     #[inline]
     pub fn step_with<R: RateModel<T>>(&mut self, rates: &R, dt: T) -> Result<(), Error> {
-        if !dt.is_finite() {
-            return Err(Error::NonFiniteStep);
-        }
-        if !(dt > T::ZERO) {
-            return Err(Error::NonPositiveStep);
+        // One compare pair for the common case; the cold path tells the errors apart.
+        if !(dt > T::ZERO && dt <= T::MAX) {
+            return Err(if dt.is_finite() {
+                Error::NonPositiveStep
+            } else {
+                Error::NonFiniteStep
+            });
         }
         if !rates.is_finite() {
             return Err(Error::NonFiniteRate);
@@ -177,6 +210,13 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
     #[must_use]
     pub fn corrections(&self) -> u64 {
         self.corrections
+    }
+
+    /// Saturated sensor samples integrated so far (via the `*_sample(s)` steps).
+    #[inline]
+    #[must_use]
+    pub fn saturated_samples(&self) -> u64 {
+        self.saturated
     }
 
     /// The scheme.

@@ -2,24 +2,23 @@
 //!
 //! A scheme asks a [`RateModel`] for the rate at fractions `c ∈ [0, 1]` of the step (Runge–Kutta stages),
 //! or for the rotation vector of the whole step (exponential-map schemes). All rates are body-frame rad/s.
-//! The models store ½ω, the factor the kinematic equation `q' = q ⊗ (0, ½ω)` uses, so no stage rescales.
 
 use crate::{Real, Vec3};
 
 /// What a scheme needs to know about ω(t) over one step `[t, t + h]`.
 pub trait RateModel<T: Real> {
-    /// ½ω(t + c h) (rad/s). `c` is a Butcher node; models return their samples exactly at their nodes.
-    fn half_rate_at(&self, c: f64) -> Vec3<T>;
+    /// ω(t + c h) (rad/s). `c` is a Butcher node; models return their samples exactly at their nodes.
+    fn rate_at(&self, c: f64) -> Vec3<T>;
 
-    /// `Some(½ω)` if the model holds the rate constant over the step (the seed's assumption V1):
+    /// `Some(ω)` if the model holds the rate constant over the step (the seed's assumption V1):
     /// a Runge–Kutta step then reduces to one quaternion product.
-    fn held_half_rate(&self) -> Option<Vec3<T>>;
+    fn held_rate(&self) -> Option<Vec3<T>>;
 
-    /// Half the rotation vector of the step, `φ/2` (rad), for exponential-map schemes:
-    /// the exact `q ← q ⊗ exp_q(φ)` of the step is then `q ⊗ exp((0, φ/2))`.
-    fn half_rotation_vector(&self, h: T) -> Vec3<T>;
+    /// Half the rotation vector of the step, `φ/2` (rad), from the half step `hh = h/2` (s), for
+    /// exponential-map schemes: the step is `q ← q ⊗ exp((0, φ/2))`.
+    fn half_rotation_vector(&self, hh: T) -> Vec3<T>;
 
-    /// `max |ω|²` over the samples (rad²/s²), for the step-angle check.
+    /// `max |ω|²` over the samples (rad²/s²), for the step-angle check. Not finite if a sample is not.
     fn max_rate_squared(&self) -> T;
 
     /// `true` if every sample is finite.
@@ -30,7 +29,7 @@ pub trait RateModel<T: Real> {
 /// Exact for constant rotation; first order on a varying rate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hold<T> {
-    half: Vec3<T>,
+    w: Vec3<T>,
 }
 
 impl<T: Real> Hold<T> {
@@ -38,30 +37,30 @@ impl<T: Real> Hold<T> {
     #[inline(always)]
     #[must_use]
     pub fn new(w: Vec3<T>) -> Self {
-        Self { half: w * T::HALF }
+        Self { w }
     }
 }
 
 impl<T: Real> RateModel<T> for Hold<T> {
     #[inline(always)]
-    fn half_rate_at(&self, _c: f64) -> Vec3<T> {
-        self.half
+    fn rate_at(&self, _c: f64) -> Vec3<T> {
+        self.w
     }
     #[inline(always)]
-    fn held_half_rate(&self) -> Option<Vec3<T>> {
-        Some(self.half)
+    fn held_rate(&self) -> Option<Vec3<T>> {
+        Some(self.w)
     }
     #[inline(always)]
-    fn half_rotation_vector(&self, h: T) -> Vec3<T> {
-        self.half * h
+    fn half_rotation_vector(&self, hh: T) -> Vec3<T> {
+        self.w * hh
     }
     #[inline(always)]
     fn max_rate_squared(&self) -> T {
-        self.half.norm_squared() * T::from_f64(4.0)
+        self.w.norm_squared()
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
-        self.half.is_finite()
+        self.w.is_finite()
     }
 }
 
@@ -69,8 +68,8 @@ impl<T: Real> RateModel<T> for Hold<T> {
 /// Second order on a varying rate (the trapezoid rule's error in ∫ω), whatever the scheme's order.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Linear<T> {
-    h0: Vec3<T>,
-    h1: Vec3<T>,
+    w0: Vec3<T>,
+    w1: Vec3<T>,
 }
 
 impl<T: Real> Linear<T> {
@@ -78,44 +77,41 @@ impl<T: Real> Linear<T> {
     #[inline(always)]
     #[must_use]
     pub fn new(w0: Vec3<T>, w1: Vec3<T>) -> Self {
-        Self {
-            h0: w0 * T::HALF,
-            h1: w1 * T::HALF,
-        }
+        Self { w0, w1 }
     }
 }
 
 impl<T: Real> RateModel<T> for Linear<T> {
     #[inline(always)]
-    fn half_rate_at(&self, c: f64) -> Vec3<T> {
+    fn rate_at(&self, c: f64) -> Vec3<T> {
         if c == 0.0 {
-            self.h0
+            self.w0
         } else if c == 1.0 {
-            self.h1
+            self.w1
         } else {
-            self.h0 + (self.h1 - self.h0) * T::from_f64(c)
+            self.w0 + (self.w1 - self.w0) * T::from_f64(c)
         }
     }
     #[inline(always)]
-    fn held_half_rate(&self) -> Option<Vec3<T>> {
+    fn held_rate(&self) -> Option<Vec3<T>> {
         None
     }
     /// `φ = h(ω₀ + ω₁)/2 + (h²/12) ω₀ × ω₁`: the mean rate plus the Magnus commutator term, which makes
     /// the increment fourth-order exact for a rate that really is linear in time.
     #[inline(always)]
-    fn half_rotation_vector(&self, h: T) -> Vec3<T> {
-        // In half rates: φ/2 = h(h0 + h1)/2 + (h²/6) h0 × h1.
-        let mean = (self.h0 + self.h1) * (h * T::HALF);
-        let comm = self.h0.cross(self.h1) * (h * h * T::from_f64(1.0 / 6.0));
+    fn half_rotation_vector(&self, hh: T) -> Vec3<T> {
+        // φ/2 = (hh/2)(ω₀ + ω₁) + (hh²/6) ω₀ × ω₁.
+        let mean = (self.w0 + self.w1) * (hh * T::HALF);
+        let comm = self.w0.cross(self.w1) * (hh * hh * T::from_f64(1.0 / 6.0));
         mean + comm
     }
     #[inline(always)]
     fn max_rate_squared(&self) -> T {
-        self.h0.norm_squared().max(self.h1.norm_squared()) * T::from_f64(4.0)
+        self.w0.norm_squared().max(self.w1.norm_squared())
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
-        self.h0.is_finite() && self.h1.is_finite()
+        self.w0.finite_probe() + self.w1.finite_probe() == T::ZERO
     }
 }
 
@@ -123,9 +119,9 @@ impl<T: Real> RateModel<T> for Linear<T> {
 /// twice the step rate). Runge–Kutta stages at c = 0, ½, 1 see the samples themselves.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quadratic<T> {
-    h0: Vec3<T>,
-    hm: Vec3<T>,
-    h1: Vec3<T>,
+    w0: Vec3<T>,
+    wm: Vec3<T>,
+    w1: Vec3<T>,
 }
 
 impl<T: Real> Quadratic<T> {
@@ -133,54 +129,50 @@ impl<T: Real> Quadratic<T> {
     #[inline(always)]
     #[must_use]
     pub fn new(w0: Vec3<T>, wm: Vec3<T>, w1: Vec3<T>) -> Self {
-        Self {
-            h0: w0 * T::HALF,
-            hm: wm * T::HALF,
-            h1: w1 * T::HALF,
-        }
+        Self { w0, wm, w1 }
     }
 }
 
 impl<T: Real> RateModel<T> for Quadratic<T> {
     #[inline(always)]
-    fn half_rate_at(&self, c: f64) -> Vec3<T> {
+    fn rate_at(&self, c: f64) -> Vec3<T> {
         if c == 0.0 {
-            self.h0
+            self.w0
         } else if c == 0.5 {
-            self.hm
+            self.wm
         } else if c == 1.0 {
-            self.h1
+            self.w1
         } else {
-            // Lagrange basis on the nodes 0, ½, 1.
+            // Lagrange basis on the nodes 0, ½, 1 (constants: c is a tableau node).
             let l0 = 2.0 * (c - 0.5) * (c - 1.0);
             let lm = -4.0 * c * (c - 1.0);
             let l1 = 2.0 * c * (c - 0.5);
-            self.h0 * T::from_f64(l0) + self.hm * T::from_f64(lm) + self.h1 * T::from_f64(l1)
+            self.w0 * T::from_f64(l0) + self.wm * T::from_f64(lm) + self.w1 * T::from_f64(l1)
         }
     }
     #[inline(always)]
-    fn held_half_rate(&self) -> Option<Vec3<T>> {
+    fn held_rate(&self) -> Option<Vec3<T>> {
         None
     }
     /// Fourth-order Magnus increment: `φ = (h/6)(ω₀ + 4ω_m + ω₁) + (h²/12) ω₀ × ω₁` (Simpson's rule for ∫ω,
     /// and the commutator term from the end samples, whose error is O(h⁵)).
     #[inline(always)]
-    fn half_rotation_vector(&self, h: T) -> Vec3<T> {
-        let simpson =
-            (self.h0 + self.hm * T::from_f64(4.0) + self.h1) * (h * T::from_f64(1.0 / 6.0));
-        let comm = self.h0.cross(self.h1) * (h * h * T::from_f64(1.0 / 6.0));
+    fn half_rotation_vector(&self, hh: T) -> Vec3<T> {
+        // φ/2 = (hh/6)(ω₀ + 4ω_m + ω₁) + (hh²/6) ω₀ × ω₁.
+        let sixth = T::from_f64(1.0 / 6.0);
+        let simpson = (self.w0 + self.wm * T::from_f64(4.0) + self.w1) * (hh * sixth);
+        let comm = self.w0.cross(self.w1) * (hh * hh * sixth);
         simpson + comm
     }
     #[inline(always)]
     fn max_rate_squared(&self) -> T {
-        self.h0
+        self.w0
             .norm_squared()
-            .max(self.hm.norm_squared())
-            .max(self.h1.norm_squared())
-            * T::from_f64(4.0)
+            .max(self.wm.norm_squared())
+            .max(self.w1.norm_squared())
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
-        self.h0.is_finite() && self.hm.is_finite() && self.h1.is_finite()
+        self.w0.finite_probe() + self.wm.finite_probe() + self.w1.finite_probe() == T::ZERO
     }
 }

@@ -75,7 +75,11 @@ impl ConingRates {
 
     /// The rate at the current time.
     pub fn rate(&self) -> Vec3<f32> {
-        Vec3::new(-CONE_AMPLITUDE * self.s, CONE_AMPLITUDE * self.c, CONE_AXIAL)
+        Vec3::new(
+            -CONE_AMPLITUDE * self.s,
+            CONE_AMPLITUDE * self.c,
+            CONE_AXIAL,
+        )
     }
 
     /// Advances by half a step.

@@ -46,7 +46,7 @@ impl Scheme for ExpMap {
         h: T,
         stabilizer: &Z,
     ) -> Quat<T> {
-        let rotated = q * Quat::exp_half(rates.half_rotation_vector(h));
+        let rotated = q * Quat::exp_half(rates.half_rotation_vector(h * T::HALF));
         if stabilizer.has_rhs_term() {
             rotated * stabilizer.radial_flow_scale(q, h)
         } else {

@@ -3,7 +3,7 @@
 use super::Stabilizer;
 use crate::{Error, Quat, Real};
 
-/// Baumgarte stabilization with gain `k` (1/s): the right-hand side becomes `½ q ⊗ (0, ω) − 2kN q`
+/// Baumgarte stabilization with gain `k` (1/s): the right-hand side becomes `½[q ⊗ (0, ω) − 4kN q]`
 /// with `N = |q|² − 1`, evaluated inside every Runge–Kutta stage (not a post-step correction).
 ///
 /// In exact arithmetic `N' = −4kN(1 + N)` (the seed's eq. (8)). Under an explicit RK scheme the seed shows
@@ -32,11 +32,11 @@ impl<T: Real> Stabilizer<T> for Baumgarte<T> {
     fn has_rhs_term(&self) -> bool {
         true
     }
-    /// `σ = −2kN`, so that `σ q = ½(−4kN E) q`.
+    /// `s = −4kN`: the right-hand side is `½[q ⊗ (0, ω) − 4kN q]`, the seed's eq. (7).
     #[inline(always)]
-    fn rhs_gain(&self, q: Quat<T>) -> T {
+    fn rhs_scalar(&self, q: Quat<T>) -> T {
         let n = q.norm_squared() - T::ONE;
-        -(T::TWO * self.k) * n
+        -(T::from_f64(4.0) * self.k) * n
     }
     #[inline(always)]
     fn norm_stiffness(&self) -> T {

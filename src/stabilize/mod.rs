@@ -33,9 +33,10 @@ pub trait Stabilizer<T: Real>: Copy {
         false
     }
 
-    /// The scalar `σ(q)` of the modified right-hand side `q' = ½ q ⊗ (0, ω) + σ(q) q` (zero if none).
+    /// The scalar `s(q)` of the modified right-hand side `q' = ½ [q ⊗ (0, ω) + s(q) q]`, the seed's eq. (7)
+    /// form `½(Ω − 4kN·E) q` (Baumgarte: `s = −4kN`; zero if none).
     #[inline(always)]
-    fn rhs_gain(&self, _q: Quat<T>) -> T {
+    fn rhs_scalar(&self, _q: Quat<T>) -> T {
         T::ZERO
     }
 
@@ -46,7 +47,7 @@ pub trait Stabilizer<T: Real>: Copy {
         T::ZERO
     }
 
-    /// Exact solution of the radial part `n' = 2σ(q) n` over `h`, as a scale factor on `q`, for schemes
+    /// Exact solution of the radial part `n' = s(q) n` over `h`, as a scale factor on `q`, for schemes
     /// that integrate the rotation exactly and treat the commuting radial term separately (the exponential
     /// map). One if there is no right-hand side term.
     #[inline(always)]
@@ -140,8 +141,8 @@ impl<T: Real> Stabilizer<T> for Policy<T> {
         matches!(self, Policy::Baumgarte { .. })
     }
     #[inline]
-    fn rhs_gain(&self, q: Quat<T>) -> T {
-        dispatch!(self, p => p.rhs_gain(q))
+    fn rhs_scalar(&self, q: Quat<T>) -> T {
+        dispatch!(self, p => p.rhs_scalar(q))
     }
     #[inline]
     fn norm_stiffness(&self) -> T {

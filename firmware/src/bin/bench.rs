@@ -76,7 +76,12 @@ fn steps<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
 }
 
 /// Instructions per step ×100 (two decimals), or u32::MAX if a step was refused.
-fn measure<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(c: &Counter, s: S, z: Z, n: usize) -> u32 {
+fn measure<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
+    c: &Counter,
+    s: S,
+    z: Z,
+    n: usize,
+) -> u32 {
     let w = black_box(rates::<T>());
     let dt = black_box(T::from_f64(1e-3));
     let Ok(mut p) = Propagator::new(Quat::<T>::IDENTITY, s, z) else {
@@ -128,7 +133,16 @@ macro_rules! scheme_rows {
         row!($c, $ok, f32, "f32", 64, $s, Normalize, "Normalize");
         row!($c, $ok, f32, "f32", 64, $s, FirstOrder, "FirstOrder");
         row!($c, $ok, f32, "f32", 64, $s, Every(16), "Every(16)");
-        row!($c, $ok, f32, "f32", 64, $s, Baumgarte { k: 0.5_f32 }, "Baumgarte");
+        row!(
+            $c,
+            $ok,
+            f32,
+            "f32",
+            64,
+            $s,
+            Baumgarte { k: 0.5_f32 },
+            "Baumgarte"
+        );
     }};
 }
 

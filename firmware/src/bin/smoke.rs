@@ -35,7 +35,11 @@ fn main() -> ! {
         }
     }
     defmt::println!("smoke done");
-    debug::exit(if refused_total == 0 { EXIT_SUCCESS } else { EXIT_FAILURE });
+    debug::exit(if refused_total == 0 {
+        EXIT_SUCCESS
+    } else {
+        EXIT_FAILURE
+    });
     loop {}
 }
 
