@@ -64,7 +64,7 @@ const CONE_AMPLITUDE: f32 = 9.284_041;
 /// −2Ω sin²(α/2) (rad/s).
 const CONE_AXIAL: f32 = -1.403_145_6;
 /// cos and sin of Ω·DT/2 = 10π·0.0005 rad.
-const HALF_STEP_COS: f32 = 0.999_876_63;
+const HALF_STEP_COS: f32 = 0.999_876_6;
 const HALF_STEP_SIN: f32 = 0.015_707_317;
 
 impl ConingRates {
