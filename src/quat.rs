@@ -100,11 +100,16 @@ impl<T: Real> Quat<T> {
         T::sum_sq_minus_one(self.w, self.x, self.y, self.z)
     }
 
-    /// `true` if every component is finite (one multiply-add chain: `Σ cᵢ·0` is ±0 iff all are finite).
+    /// `true` if every component is finite (with an FPU one multiply-add chain, `Σ cᵢ·0` is ±0 iff all are
+    /// finite; in software float, bit tests).
     #[inline(always)]
     #[must_use]
     pub fn is_finite(self) -> bool {
-        self.w * T::ZERO + self.x * T::ZERO + self.y * T::ZERO + self.z * T::ZERO == T::ZERO
+        if T::HARDWARE_FLOAT {
+            self.w * T::ZERO + self.x * T::ZERO + self.y * T::ZERO + self.z * T::ZERO == T::ZERO
+        } else {
+            self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+        }
     }
 
     /// The unit quaternion `q / |q|`, or `None` for a zero or non-finite quaternion.

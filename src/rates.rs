@@ -3,6 +3,7 @@
 //! A scheme asks a [`RateModel`] for the rate at fractions `c ∈ [0, 1]` of the step (Runge–Kutta stages),
 //! or for the rotation vector of the whole step (exponential-map schemes). All rates are body-frame rad/s.
 
+use crate::vec3::all_finite;
 use crate::{Real, Vec3};
 
 /// What a scheme needs to know about ω(t) over one step `[t, t + h]`.
@@ -111,7 +112,7 @@ impl<T: Real> RateModel<T> for Linear<T> {
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
-        self.w0.finite_probe() + self.w1.finite_probe() == T::ZERO
+        all_finite(&[self.w0, self.w1])
     }
 }
 
@@ -173,6 +174,6 @@ impl<T: Real> RateModel<T> for Quadratic<T> {
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
-        self.w0.finite_probe() + self.wm.finite_probe() + self.w1.finite_probe() == T::ZERO
+        all_finite(&[self.w0, self.wm, self.w1])
     }
 }

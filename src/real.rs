@@ -53,6 +53,10 @@ pub trait Real:
     const EPSILON: Self;
     /// Largest finite value.
     const MAX: Self;
+    /// `true` where this type has hardware arithmetic (f32 on `eabihf` ARM, f32 and f64 on x86-64 and
+    /// aarch64). Chooses how finiteness is checked: a multiply-add probe is cheap with an FPU and costly
+    /// in software float, where integer bit tests win.
+    const HARDWARE_FLOAT: bool;
     /// Largest squared half-angle `x²` (rad²) for which the exponential map uses its Taylor branch.
     ///
     /// Chosen so that the first omitted term (x⁶/720 in cos, x⁶/5040 in sin x / x) is below a quarter ulp:
@@ -94,7 +98,7 @@ pub trait Real:
 }
 
 macro_rules! impl_real {
-    ($t:ty, $sqrt:path, $sin:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr) => {
+    ($t:ty, $sqrt:path, $sin:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -104,6 +108,7 @@ macro_rules! impl_real {
             const EPSILON: Self = <$t>::EPSILON;
             const MAX: Self = <$t>::MAX;
             const EXP_TAYLOR_MAX_SQ: Self = $taylor;
+            const HARDWARE_FLOAT: bool = $hw;
 
             #[inline(always)]
             fn from_f64(v: f64) -> Self {
@@ -179,7 +184,13 @@ impl_real!(
     libm::hypotf,
     conversion_atan2_f32,
     sum_sq_minus_one_f32,
-    1.0e-2
+    1.0e-2,
+    cfg!(any(
+        target_arch = "x86",
+        target_arch = "x86_64",
+        target_arch = "aarch64",
+        all(target_arch = "arm", target_abi = "eabihf")
+    ))
 );
 impl_real!(
     f64,
@@ -191,7 +202,12 @@ impl_real!(
     libm::hypot,
     libm::atan2,
     sum_sq_minus_one_f64,
-    2.5e-5
+    2.5e-5,
+    cfg!(any(
+        target_arch = "x86",
+        target_arch = "x86_64",
+        target_arch = "aarch64"
+    ))
 );
 
 #[cfg(feature = "micromath")]

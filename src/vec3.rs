@@ -66,15 +66,7 @@ impl<T: Real> Vec3<T> {
     #[inline(always)]
     #[must_use]
     pub fn is_finite(self) -> bool {
-        self.finite_probe() == T::ZERO
-    }
-
-    /// `x·0 + y·0 + z·0`: ±0 if every component is finite, NaN otherwise (∞·0 and NaN·0 are NaN).
-    /// Three multiply-adds and one compare check any number of values, where `is_finite` per component
-    /// costs five integer instructions each on Cortex-M4.
-    #[inline(always)]
-    pub(crate) fn finite_probe(self) -> T {
-        self.x * T::ZERO + self.y * T::ZERO + self.z * T::ZERO
+        all_finite(&[self])
     }
 
     /// The vector scaled to unit length, or `None` if it is zero or not finite.
@@ -98,6 +90,25 @@ impl<T: Real> Vec3<T> {
     #[must_use]
     pub fn from_f64(v: Vec3<f64>) -> Self {
         Self::new(T::from_f64(v.x), T::from_f64(v.y), T::from_f64(v.z))
+    }
+}
+
+/// `true` if every component of every vector is finite.
+///
+/// With hardware float: `Σ cᵢ·0` is ±0 iff all are finite (∞·0 and NaN·0 are NaN), one multiply-add chain and
+/// one compare for any number of values, where `is_finite` per component costs five integer instructions on a
+/// Cortex-M4. In software float (f64 on Cortex-M, f32 on M0/M3) the bit tests are cheaper and used instead.
+#[inline(always)]
+pub(crate) fn all_finite<T: Real, const N: usize>(vs: &[Vec3<T>; N]) -> bool {
+    if T::HARDWARE_FLOAT {
+        let mut probe = T::ZERO;
+        for v in vs {
+            probe = probe + v.x * T::ZERO + v.y * T::ZERO + v.z * T::ZERO;
+        }
+        probe == T::ZERO
+    } else {
+        vs.iter()
+            .all(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
     }
 }
 
