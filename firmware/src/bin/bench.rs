@@ -150,7 +150,9 @@ macro_rules! scheme_rows {
 fn main() -> ! {
     let Some(cp) = cortex_m::Peripherals::take() else {
         debug::exit(EXIT_FAILURE);
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     };
     let c = Counter::new(cp.SYST);
     let mut ok = true;
@@ -165,11 +167,15 @@ fn main() -> ! {
     row!(&c, ok, f64, "f64", 16, ExpMap, FirstOrder, "FirstOrder");
     defmt::println!("bench done");
     debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     debug::exit(EXIT_FAILURE);
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }

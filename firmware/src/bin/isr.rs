@@ -140,17 +140,23 @@ fn main() -> ! {
         && p.steps() == STEPS as u64
         && identical;
     debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }
 
 fn fail(what: &str) -> ! {
     defmt::println!("isr setup failed: {=str}", what);
     debug::exit(EXIT_FAILURE);
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     debug::exit(EXIT_FAILURE);
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }

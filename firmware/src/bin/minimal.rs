@@ -48,11 +48,15 @@ fn main() -> ! {
         Err(_) => false,
     };
     debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     debug::exit(EXIT_FAILURE);
-    loop {}
+    loop {
+        cortex_m::asm::wfi();
+    }
 }
