@@ -37,6 +37,13 @@ pub enum Error {
     InvalidStabilizer,
     /// The step produced a non-finite attitude (arithmetic overflow); the step was discarded.
     NonFiniteResult,
+    /// A delta-angle update got another number of increments than its coning correction takes.
+    SampleCount {
+        /// Increments the correction takes.
+        expected: u32,
+        /// Increments given.
+        got: u32,
+    },
 }
 
 impl fmt::Display for Error {
@@ -59,6 +66,10 @@ impl fmt::Display for Error {
                 f.write_str("invalid stabilizer: Every(0) or Baumgarte k negative or not finite")
             }
             Error::NonFiniteResult => f.write_str("step overflowed to a non-finite attitude"),
+            Error::SampleCount { expected, got } => write!(
+                f,
+                "coning correction takes {expected} angle increments per update, got {got}"
+            ),
         }
     }
 }

@@ -7,6 +7,8 @@
 // the error branch. The lint's `partial_cmp` rewrite says the same less directly.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod accumulate;
+pub mod coning;
 mod convert;
 mod error;
 #[cfg(feature = "embedded-hal")]

@@ -1,6 +1,8 @@
 //! The propagator: an attitude, a scheme, a stabilizer and counters, advanced one gyro step at a time.
 
-use crate::rates::{Hold, Linear, Quadratic, RateModel};
+use crate::accumulate::{Accumulator, Kahan, Plain};
+use crate::coning::ConingCorrection;
+use crate::rates::{Hold, Linear, Quadratic, RateModel, RotationVector};
 use crate::scheme::Scheme;
 use crate::stabilize::Stabilizer;
 use crate::{Error, GyroSample, Quat, Real, Vec3};
@@ -8,38 +10,70 @@ use crate::{Error, GyroSample, Quat, Real, Vec3};
 /// Propagates a body-to-reference attitude quaternion from body-frame gyro rates.
 ///
 /// `T` is the working precision (`f32` or `f64`), `S` the [scheme](crate::scheme), `Z` the
-/// [stabilizer](crate::stabilize). Small and `Copy`; no allocation, no trait objects, no panics on the step path.
+/// [stabilizer](crate::stabilize), `A` how increments are added ([`Plain`], or [`Kahan`] for a compensated
+/// f32 state, see [`Propagator::new_compensated`]). Small and `Copy`; no allocation, no trait objects, no
+/// panics on the step path.
 ///
 /// Every `step_*` call validates its inputs first, computes the new attitude into locals and commits only
 /// on success: on any `Err` the propagator is bit-for-bit what it was before the call.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Propagator<T, S, Z> {
+pub struct Propagator<T, S, Z, A = Plain> {
     q: Quat<T>,
     scheme: S,
     stabilizer: Z,
+    accumulator: A,
     steps: u64,
     corrections: u64,
     saturated: u64,
     pending: u32,
+    previous_increment: Option<Vec3<T>>,
 }
 
-impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
+impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z, Plain> {
     /// Starts from attitude `q0` (normalized here; any finite non-zero quaternion is accepted).
     ///
     /// # Errors
     /// [`Error::NonFiniteQuaternion`], [`Error::ZeroQuaternion`], or [`Error::InvalidStabilizer`].
     pub fn new(q0: Quat<T>, scheme: S, stabilizer: Z) -> Result<Self, Error> {
+        Self::with_accumulator(q0, scheme, stabilizer, Plain)
+    }
+}
+
+impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z, Kahan<T>> {
+    /// Like [`Propagator::new`], with the attitude kept by Kahan-compensated summation of the step
+    /// increments ([`Kahan`]): an f32 state that tracks an f64 one over millions of steps.
+    ///
+    /// # Errors
+    /// As [`Propagator::new`].
+    pub fn new_compensated(q0: Quat<T>, scheme: S, stabilizer: Z) -> Result<Self, Error> {
+        Self::with_accumulator(q0, scheme, stabilizer, Kahan::new())
+    }
+}
+
+impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z, A> {
+    /// Starts from attitude `q0` (normalized) with an explicit [`Accumulator`].
+    ///
+    /// # Errors
+    /// As [`Propagator::new`].
+    pub fn with_accumulator(
+        q0: Quat<T>,
+        scheme: S,
+        stabilizer: Z,
+        accumulator: A,
+    ) -> Result<Self, Error> {
         stabilizer.validate()?;
         let q = Self::checked_unit(q0)?;
         Ok(Self {
             q,
             scheme,
             stabilizer,
+            accumulator,
             steps: 0,
             corrections: 0,
             saturated: 0,
             pending: 0,
+            previous_increment: None,
         })
     }
 
@@ -56,6 +90,7 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
     /// [`Error::NonFiniteQuaternion`] or [`Error::ZeroQuaternion`].
     pub fn set_attitude(&mut self, q: Quat<T>) -> Result<(), Error> {
         self.q = Self::checked_unit(q)?;
+        self.accumulator.reset();
         self.pending = 0;
         Ok(())
     }
@@ -123,6 +158,38 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
         self.step_with(&Quadratic::new(w_start, w_middle, w_end), dt)
     }
 
+    /// One update from delta angles: the angle increments `Δθᵢ = ∫ω dt` (rad, body frame) of the gyro
+    /// samples covering this update of `dt` (s), combined by the coning correction `coning`
+    /// (see [`crate::coning`]) into the update's rotation vector φ, then `q ← q ⊗ exp_q(φ)` with an
+    /// exponential-map scheme (Runge–Kutta schemes see the equivalent constant rate φ/dt). The last
+    /// increment is kept for [`crate::coning::OnePlusPrevious`] on the next update.
+    ///
+    /// # Errors
+    /// [`Error::SampleCount`] if the correction takes another number of increments;
+    /// [`Error::NonFiniteRate`] for a non-finite increment; otherwise as [`Propagator::step_with`].
+    pub fn step_delta<C: ConingCorrection>(
+        &mut self,
+        coning: C,
+        increments: &[Vec3<T>],
+        dt: T,
+    ) -> Result<(), Error> {
+        let n = increments.len();
+        let want = coning.samples().unwrap_or(n.max(1));
+        if n != want {
+            return Err(Error::SampleCount {
+                expected: want as u32,
+                got: n as u32,
+            });
+        }
+        if !increments.iter().all(|d| d.is_finite()) {
+            return Err(Error::NonFiniteRate);
+        }
+        let phi = coning.rotation_vector(self.previous_increment, increments);
+        self.step_with(&RotationVector::new(phi, dt), dt)?;
+        self.previous_increment = Some(increments[n - 1]);
+        Ok(())
+    }
+
     /// One step of `dt` (s) with any [`RateModel`].
     ///
     /// # Errors
@@ -167,13 +234,20 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>> Propagator<T, S, Z> {
                 });
             }
         }
-        let advanced = self.scheme.advance(self.q, rates, dt, &self.stabilizer);
+        // Compute into locals (the accumulator is Copy), commit only on success.
+        let mut acc = self.accumulator;
+        let d = self.scheme.increment(self.q, rates, dt, &self.stabilizer);
+        let advanced = acc.add(self.q, d);
         let pending = self.pending.saturating_add(1);
-        let (q, corrected) = self.stabilizer.after_step(advanced, pending);
+        let (q, corrected) = match self.stabilizer.correction(advanced, pending) {
+            Some(c) => (acc.add(advanced, c), true),
+            None => (advanced, false),
+        };
         if !q.is_finite() {
             return Err(Error::NonFiniteResult);
         }
         self.q = q;
+        self.accumulator = acc;
         self.steps = self.steps.wrapping_add(1);
         if corrected {
             self.corrections = self.corrections.wrapping_add(1);

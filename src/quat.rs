@@ -188,23 +188,34 @@ impl<T: Real> Quat<T> {
     #[inline(always)]
     #[must_use]
     pub(crate) fn exp_half(v: Vec3<T>) -> Self {
+        let m = Self::exp_half_minus_one(v);
+        Self::from_parts(T::ONE + m.w, m.vector())
+    }
+
+    /// `exp((0, v)) − 1 = (cos|v| − 1, sin|v| v/|v|)`, with `cos|v| − 1` free of cancellation: the increment
+    /// form of a rotation, `q ⊗ exp = q + q ⊗ (exp − 1)`.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn exp_half_minus_one(v: Vec3<T>) -> Self {
         let x2 = v.norm_squared();
         if x2 < T::EXP_TAYLOR_MAX_SQ {
-            // cos x = 1 − x²/2 + x⁴/24, sin x / x = 1 − x²/6 + x⁴/120 (next terms below ¼ ulp, see Real).
-            let c = T::ONE - x2 * (T::HALF - x2 * T::from_f64(1.0 / 24.0));
+            // cos x − 1 = −x²/2 + x⁴/24, sin x / x = 1 − x²/6 + x⁴/120 (next terms below ¼ ulp, see Real).
+            let cm1 = -(x2 * (T::HALF - x2 * T::from_f64(1.0 / 24.0)));
             let s = T::ONE - x2 * (T::from_f64(1.0 / 6.0) - x2 * T::from_f64(1.0 / 120.0));
-            Self::from_parts(c, v * s)
+            Self::from_parts(cm1, v * s)
         } else {
-            Self::exp_half_trig(v, x2)
+            Self::exp_half_minus_one_trig(v, x2)
         }
     }
 
     #[cold]
     #[inline(never)]
-    fn exp_half_trig(v: Vec3<T>, x2: T) -> Self {
+    fn exp_half_minus_one_trig(v: Vec3<T>, x2: T) -> Self {
         // |v|² may have overflowed (or be NaN): recompute the norm without overflow then.
         let x = if x2.is_finite() { x2.sqrt() } else { v.norm() };
-        Self::from_parts(x.cos(), v * (x.sin() / x))
+        let half = (x * T::HALF).sin();
+        // cos x − 1 = −2 sin²(x/2).
+        Self::from_parts(-(T::TWO * half * half), v * (x.sin() / x))
     }
 
     /// The rotation vector `φ` (rad) with `exp_q(φ) = ±q`, choosing `|φ| ≤ π` (the logarithm map).

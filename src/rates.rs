@@ -177,3 +177,44 @@ impl<T: Real> RateModel<T> for Quadratic<T> {
         all_finite(&[self.w0, self.wm, self.w1])
     }
 }
+
+/// The step's rotation vector `φ` (rad) given directly, from delta-angle (integrated-rate) sensors after a
+/// coning correction (see [`crate::coning`]). Exponential-map schemes apply `exp_q(φ)` exactly; Runge–Kutta
+/// schemes see the equivalent constant rate `φ/h`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotationVector<T> {
+    phi: Vec3<T>,
+    h: T,
+}
+
+impl<T: Real> RotationVector<T> {
+    /// Rotation vector `phi` (rad, body frame) over a step of `h` (s).
+    #[inline(always)]
+    #[must_use]
+    pub fn new(phi: Vec3<T>, h: T) -> Self {
+        Self { phi, h }
+    }
+}
+
+impl<T: Real> RateModel<T> for RotationVector<T> {
+    #[inline(always)]
+    fn rate_at(&self, _c: f64) -> Vec3<T> {
+        self.phi * (T::ONE / self.h)
+    }
+    #[inline(always)]
+    fn held_rate(&self) -> Option<Vec3<T>> {
+        Some(self.phi * (T::ONE / self.h))
+    }
+    #[inline(always)]
+    fn half_rotation_vector(&self, _hh: T) -> Vec3<T> {
+        self.phi * T::HALF
+    }
+    #[inline(always)]
+    fn max_rate_squared(&self) -> T {
+        self.phi.norm_squared() / (self.h * self.h)
+    }
+    #[inline(always)]
+    fn is_finite(&self) -> bool {
+        self.phi.is_finite()
+    }
+}

@@ -210,10 +210,15 @@ impl_real!(
     ))
 );
 
+/// micromath's `atan2(0, 0)` is NaN (libm's is 0, and the identity's Euler angles need 0): guarded here.
 #[cfg(feature = "micromath")]
 #[inline]
 fn conversion_atan2_f32(y: f32, x: f32) -> f32 {
-    micromath::F32Ext::atan2(y, x)
+    if y == 0.0 && x == 0.0 {
+        0.0
+    } else {
+        micromath::F32Ext::atan2(y, x)
+    }
 }
 
 #[cfg(not(feature = "micromath"))]

@@ -192,7 +192,7 @@ fn baumgarte_under_the_exponential_map_follows_the_seed_eq8() {
     let q = Quat::new(1.1_f64, 0.2, -0.1, 0.3); // N₀ = 0.35
     let n0 = q.norm_error();
     let b = Baumgarte { k };
-    let scale = b.radial_flow_scale(q, h);
+    let scale = 1.0 + b.radial_flow_scale_minus_one(q, h);
     let n1 = (q * scale).norm_error();
     // Logistic solution of eq. (8): N(t) = N₀ e^{−4kt} / (1 + N₀ (1 − e^{−4kt})).
     let e = (-4.0 * k * h).exp();

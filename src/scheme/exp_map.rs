@@ -38,19 +38,24 @@ impl Scheme for ExpMap {
     fn norm_change(&self, _step_angle: f64) -> f64 {
         0.0
     }
+    /// `q ⊗ (e − 1)` with `e = exp_q(φ)`, and with Baumgarte `q ⊗ (ρe − 1)` for the exact radial factor ρ.
     #[inline(always)]
-    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
+    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
         &self,
         q: Quat<T>,
         rates: &R,
         h: T,
         stabilizer: &Z,
     ) -> Quat<T> {
-        let rotated = q * Quat::exp_half(rates.half_rotation_vector(h * T::HALF));
+        let em1 = Quat::exp_half_minus_one(rates.half_rotation_vector(h * T::HALF));
         if stabilizer.has_rhs_term() {
-            rotated * stabilizer.radial_flow_scale(q, h)
+            // ρe − 1 = (ρ−1 + (cos−1) + (ρ−1)(cos−1), ρ · sin-part).
+            let rm1 = stabilizer.radial_flow_scale_minus_one(q, h);
+            let w = rm1 + em1.w + rm1 * em1.w;
+            let v = em1.vector() * (T::ONE + rm1);
+            q * Quat::from_parts(w, v)
         } else {
-            rotated
+            q * em1
         }
     }
 }

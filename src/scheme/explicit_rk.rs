@@ -21,12 +21,37 @@ use crate::{Quat, Real, Vec3};
 
 /// Compile-time data derived from a tableau for the held-rate path.
 trait HeldRatePolynomials: ButcherTableau {
-    /// `C(s) = Σ_j r_{2j} (−s)^j`.
-    const C_POLY: [f64; MAX_STAGES / 2 + 1] = rotation_polynomials(&Self::STABILITY_POLYNOMIAL).0;
+    /// `(C(s) − 1)/s = Σ_{j≥1} r_{2j} (−1)^j s^{j−1}`: the scalar part of the increment, without the 1 that
+    /// would cancel (C(0) = r₀ = 1).
+    const C_MINUS_ONE_OVER_S: [f64; MAX_STAGES / 2 + 1] =
+        shift_down(rotation_polynomials(&Self::STABILITY_POLYNOMIAL).0);
     /// `S(s) = Σ_j r_{2j+1} (−s)^j`.
     const S_POLY: [f64; MAX_STAGES / 2 + 1] = rotation_polynomials(&Self::STABILITY_POLYNOMIAL).1;
 }
 impl<Tab: ButcherTableau> HeldRatePolynomials for Tab {}
+
+/// Drops the constant coefficient and divides by `s`: `[p₀, p₁, p₂, …] → [p₁, p₂, …, 0]`.
+const fn shift_down<const N: usize>(p: [f64; N]) -> [f64; N] {
+    let mut out = [0.0; N];
+    let mut i = 1;
+    while i < N {
+        out[i - 1] = p[i];
+        i += 1;
+    }
+    out
+}
+
+/// `true` if every coefficient is zero (then the polynomial term is skipped at compile time).
+const fn all_zero<const N: usize>(p: &[f64; N]) -> bool {
+    let mut i = 0;
+    while i < N {
+        if p[i] != 0.0 {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
 
 /// Horner evaluation in `T`, starting at the highest non-zero coefficient (folded at compile time), so a
 /// zero coefficient costs nothing and a leading 1 costs no multiplication.
@@ -48,13 +73,15 @@ fn horner<T: Real, const N: usize>(p: &[f64; N], s: T) -> T {
     acc
 }
 
-/// The held-rate step `q ⊗ (C(x²), S(x²)·v)` with `v = hω/2`.
+/// The held-rate increment `q ⊗ (C(x²) − 1, S(x²)·v)` with `v = hω/2`, `x² = |v|²`.
 #[inline(always)]
-fn held_rate_step<T: Real, Tab: ButcherTableau>(q: Quat<T>, v: Vec3<T>) -> Quat<T> {
+fn held_rate_increment<T: Real, Tab: ButcherTableau>(q: Quat<T>, v: Vec3<T>) -> Quat<T> {
+    let vector = q.mul_pure(v * horner(&Tab::S_POLY, v.norm_squared()));
+    if all_zero(&Tab::C_MINUS_ONE_OVER_S) {
+        return vector; // Euler: C = 1
+    }
     let s = v.norm_squared();
-    let c = horner(&Tab::C_POLY, s);
-    let sv = horner(&Tab::S_POLY, s);
-    q * c + q.mul_pure(v * sv)
+    q * (s * horner(&Tab::C_MINUS_ONE_OVER_S, s)) + vector
 }
 
 /// Adds `coef·k` to an optional running sum, skipping a zero coefficient (a literal after unrolling).
@@ -89,9 +116,9 @@ fn weighted_sum<T: Real>(
     acc
 }
 
-/// One explicit RK step of `q' = ½ g(c, q)` over `h = 2·hh` with the tableau's stages.
+/// The increment of one explicit RK step of `q' = ½ g(c, q)` over `h = 2·hh` with the tableau's stages.
 #[inline(always)]
-pub(crate) fn stage_step<T: Real, Tab: ButcherTableau, G: Fn(f64, Quat<T>) -> Quat<T>>(
+pub(crate) fn stage_increment<T: Real, Tab: ButcherTableau, G: Fn(f64, Quat<T>) -> Quat<T>>(
     q: Quat<T>,
     hh: T,
     g: G,
@@ -110,8 +137,8 @@ pub(crate) fn stage_step<T: Real, Tab: ButcherTableau, G: Fn(f64, Quat<T>) -> Qu
     }
     stages!(0 1 2 3 4 5);
     match weighted_sum(&Tab::B, &k, Tab::STAGES) {
-        Some(s) => q + s * hh,
-        None => q,
+        Some(s) => s * hh,
+        None => Quat::ZERO,
     }
 }
 
@@ -138,7 +165,7 @@ impl<Tab: ButcherTableau> Scheme for Tab {
     }
 
     #[inline(always)]
-    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
+    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
         &self,
         q: Quat<T>,
         rates: &R,
@@ -148,11 +175,11 @@ impl<Tab: ButcherTableau> Scheme for Tab {
         let hh = h * T::HALF;
         if !stabilizer.has_rhs_term() {
             if let Some(w) = rates.held_rate() {
-                return held_rate_step::<T, Tab>(q, w * hh);
+                return held_rate_increment::<T, Tab>(q, w * hh);
             }
-            return stage_step::<T, Tab, _>(q, hh, |c, y| y.mul_pure(rates.rate_at(c)));
+            return stage_increment::<T, Tab, _>(q, hh, |c, y| y.mul_pure(rates.rate_at(c)));
         }
-        stage_step::<T, Tab, _>(q, hh, |c, y| {
+        stage_increment::<T, Tab, _>(q, hh, |c, y| {
             y.mul_pure(rates.rate_at(c)) + y * stabilizer.rhs_scalar(y)
         })
     }
@@ -166,5 +193,5 @@ pub fn held_rate_step_by_stages<T: Real, Tab: ButcherTableau>(
     w: Vec3<T>,
     h: T,
 ) -> Quat<T> {
-    stage_step::<T, Tab, _>(q, h * T::HALF, |_, y| y.mul_pure(w))
+    q + stage_increment::<T, Tab, _>(q, h * T::HALF, |_, y| y.mul_pure(w))
 }

@@ -52,15 +52,28 @@ pub trait Scheme: Copy {
         1.0 + self.norm_change(step_angle)
     }
 
-    /// Advances `q` over one step of length `h` (s) with the rates of `rates`. No checks: the propagator
-    /// validates inputs first; the lab calls this directly to explore beyond the bounds.
-    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
+    /// The increment `Δ` of one step of length `h` (s) from `q` with the rates of `rates`: the new attitude
+    /// is `q + Δ`. Schemes return increments so that the propagator can add them with compensated summation
+    /// (see [`crate::accumulate`]). No checks: the propagator validates inputs first.
+    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
         &self,
         q: Quat<T>,
         rates: &R,
         h: T,
         stabilizer: &Z,
     ) -> Quat<T>;
+
+    /// `q + increment(…)`: one unchecked step (the lab calls this to explore beyond the bounds).
+    #[inline(always)]
+    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
+        &self,
+        q: Quat<T>,
+        rates: &R,
+        h: T,
+        stabilizer: &Z,
+    ) -> Quat<T> {
+        q + self.increment(q, rates, h, stabilizer)
+    }
 }
 
 /// Any scheme, chosen at run time (the host lab's way; firmware names one type instead).
@@ -141,13 +154,13 @@ impl Scheme for Method {
         dispatch!(self, s => s.norm_change(step_angle))
     }
     #[inline]
-    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
+    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
         &self,
         q: Quat<T>,
         rates: &R,
         h: T,
         stabilizer: &Z,
     ) -> Quat<T> {
-        dispatch!(self, s => s.advance(q, rates, h, stabilizer))
+        dispatch!(self, s => s.increment(q, rates, h, stabilizer))
     }
 }

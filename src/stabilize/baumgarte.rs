@@ -42,17 +42,19 @@ impl<T: Real> Stabilizer<T> for Baumgarte<T> {
     fn norm_stiffness(&self) -> T {
         T::from_f64(4.0) * self.k
     }
-    /// Exact solution of `n' = −4k(n − 1)n` for `n = |q|²` (logistic):
-    /// `n(h) = n₀ / (n₀ + (1 − n₀) e^{−4kh})`; returns `√(n(h)/n₀)`.
+    /// Exact solution of `n' = −4k(n − 1)n` for `n = |q|²` (logistic, the seed's eq. (8)):
+    /// `n(h)/n₀ = 1 / (n₀ + (1 − n₀) e^{−4kh}) = 1 + r` with `r = (1 − n₀)(1 − e^{−4kh}) / (…)`;
+    /// returns `ρ − 1 = √(1 + r) − 1 = r / (√(1 + r) + 1)`.
     #[inline]
-    fn radial_flow_scale(&self, q: Quat<T>, h: T) -> T {
+    fn radial_flow_scale_minus_one(&self, q: Quat<T>, h: T) -> T {
         let n0 = q.norm_squared();
         let decay = (-(T::from_f64(4.0) * self.k * h)).exp();
-        let n1 = n0 / (n0 + (T::ONE - n0) * decay);
-        (n1 / n0).sqrt()
+        let denom = n0 + (T::ONE - n0) * decay;
+        let r = (T::ONE - n0) * (T::ONE - decay) / denom;
+        r / ((T::ONE + r).sqrt() + T::ONE)
     }
     #[inline(always)]
-    fn after_step(&self, q: Quat<T>, _pending: u32) -> (Quat<T>, bool) {
-        (q, false)
+    fn correction(&self, _q: Quat<T>, _pending: u32) -> Option<Quat<T>> {
+        None
     }
 }

@@ -47,17 +47,18 @@ pub trait Stabilizer<T: Real>: Copy {
         T::ZERO
     }
 
-    /// Exact solution of the radial part `n' = s(q) n` over `h`, as a scale factor on `q`, for schemes
-    /// that integrate the rotation exactly and treat the commuting radial term separately (the exponential
-    /// map). One if there is no right-hand side term.
+    /// Exact solution of the radial part `n' = s(q) n` over `h`, as `ρ − 1` for the scale factor `ρ` on `q`
+    /// (computed without cancellation), for schemes that integrate the rotation exactly and treat the
+    /// commuting radial term separately (the exponential map). Zero if there is no right-hand side term.
     #[inline(always)]
-    fn radial_flow_scale(&self, _q: Quat<T>, _h: T) -> T {
-        T::ONE
+    fn radial_flow_scale_minus_one(&self, _q: Quat<T>, _h: T) -> T {
+        T::ZERO
     }
 
-    /// Post-step correction. `pending` counts the steps since the last correction, this one included.
-    /// Returns the corrected quaternion and whether a correction was applied.
-    fn after_step(&self, q: Quat<T>, pending: u32) -> (Quat<T>, bool);
+    /// Post-step correction as an increment: `Some(Δ)` with the corrected attitude `q + Δ`, or `None` when
+    /// no correction is due. `pending` counts the steps since the last correction, this one included.
+    /// Increments (rather than new values) let the propagator add them with compensated summation.
+    fn correction(&self, q: Quat<T>, pending: u32) -> Option<Quat<T>>;
 }
 
 /// No stabilization: the seed's plain kinematic equation.
@@ -67,8 +68,8 @@ pub struct Off;
 
 impl<T: Real> Stabilizer<T> for Off {
     #[inline(always)]
-    fn after_step(&self, q: Quat<T>, _pending: u32) -> (Quat<T>, bool) {
-        (q, false)
+    fn correction(&self, _q: Quat<T>, _pending: u32) -> Option<Quat<T>> {
+        None
     }
 }
 
@@ -149,11 +150,11 @@ impl<T: Real> Stabilizer<T> for Policy<T> {
         dispatch!(self, p => Stabilizer::<T>::norm_stiffness(&p))
     }
     #[inline]
-    fn radial_flow_scale(&self, q: Quat<T>, h: T) -> T {
-        dispatch!(self, p => p.radial_flow_scale(q, h))
+    fn radial_flow_scale_minus_one(&self, q: Quat<T>, h: T) -> T {
+        dispatch!(self, p => p.radial_flow_scale_minus_one(q, h))
     }
     #[inline]
-    fn after_step(&self, q: Quat<T>, pending: u32) -> (Quat<T>, bool) {
-        dispatch!(self, p => p.after_step(q, pending))
+    fn correction(&self, q: Quat<T>, pending: u32) -> Option<Quat<T>> {
+        dispatch!(self, p => p.correction(q, pending))
     }
 }

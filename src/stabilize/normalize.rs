@@ -11,17 +11,20 @@ use crate::{Error, Quat, Real};
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Normalize;
 
-/// `q / |q|` for a quaternion near unit length (one square root, one division, four products).
-/// Non-finite if `|q|² ` is zero or not finite; the propagator then refuses the step.
+/// The increment `q/|q| − q = q (1/|q| − 1)` for a quaternion near unit length, with
+/// `1/|q| − 1 = (1 − |q|²) / (|q| (1 + |q|))` free of cancellation (one square root, one division).
+/// Non-finite if `|q|²` is zero or not finite; the propagator then refuses the step.
 #[inline(always)]
-pub(crate) fn normalize_near_unit<T: Real>(q: Quat<T>) -> Quat<T> {
-    q * (T::ONE / q.norm_squared().sqrt())
+pub(crate) fn normalizing_increment<T: Real>(q: Quat<T>) -> Quat<T> {
+    let n2 = q.norm_squared();
+    let n = n2.sqrt();
+    q * ((T::ONE - n2) / (n * (T::ONE + n)))
 }
 
 impl<T: Real> Stabilizer<T> for Normalize {
     #[inline(always)]
-    fn after_step(&self, q: Quat<T>, _pending: u32) -> (Quat<T>, bool) {
-        (normalize_near_unit(q), true)
+    fn correction(&self, q: Quat<T>, _pending: u32) -> Option<Quat<T>> {
+        Some(normalizing_increment(q))
     }
 }
 
@@ -36,10 +39,9 @@ pub struct FirstOrder;
 
 impl<T: Real> Stabilizer<T> for FirstOrder {
     #[inline(always)]
-    fn after_step(&self, q: Quat<T>, _pending: u32) -> (Quat<T>, bool) {
-        // 1 − |q|² is exact (Sterbenz) for |q|² ∈ [½, 2]; the only rounding is in 1 + (…)/2 and the products.
-        let factor = T::ONE + T::HALF * (T::ONE - q.norm_squared());
-        (q * factor, true)
+    fn correction(&self, q: Quat<T>, _pending: u32) -> Option<Quat<T>> {
+        // q (3 − |q|²)/2 = q + q (1 − |q|²)/2; 1 − |q|² is exact (Sterbenz) for |q|² ∈ [½, 2].
+        Some(q * (T::HALF * (T::ONE - q.norm_squared())))
     }
 }
 
@@ -60,11 +62,11 @@ impl<T: Real> Stabilizer<T> for Every {
         }
     }
     #[inline]
-    fn after_step(&self, q: Quat<T>, pending: u32) -> (Quat<T>, bool) {
+    fn correction(&self, q: Quat<T>, pending: u32) -> Option<Quat<T>> {
         if pending >= self.0 {
-            (normalize_near_unit(q), true)
+            Some(normalizing_increment(q))
         } else {
-            (q, false)
+            None
         }
     }
 }

@@ -1,0 +1,230 @@
+//! Coning corrections for delta-angle input: from the angle increments `Δθᵢ = ∫ ω dt` (rad) over the gyro
+//! sample intervals of one update to the update's rotation vector `φ`, then `q ← q ⊗ exp_q(φ)`.
+//!
+//! Summing the increments ignores the non-commutativity of rotation: under coning motion (the rate vector
+//! itself rotating) the attitude drifts about the cone axis. The cross-product corrections below remove that
+//! drift to a given order (Ignagni, J. Guidance 13(2), 1990; Savage, *Strapdown Analytics*, §7):
+//!
+//! | correction | increments per update | φ | coning drift, small α (rad/s) |
+//! |---|---|---|---|
+//! | [`Uncorrected`] | any | `ΣΔθ` | `α²Ω (ΩT)²/12` |
+//! | [`OnePlusPrevious`] | 1 (+ the previous update's) | `Δθ_k + (1/12) Δθ_{k−1} × Δθ_k` | `α²Ω (Ωh)⁴/60` |
+//! | [`TwoSample`] | 2 | `ΣΔθ + (2/3) Δθ₁ × Δθ₂` | `α²Ω (ΩT)⁴/960` |
+//! | [`ThreeSample`] | 3 | `ΣΔθ + (9/20 Δθ₁ + 27/20 Δθ₂) × Δθ₃` | `α²Ω (ΩT)⁶/204120` |
+//! | [`FourSample`] | 4 | `ΣΔθ + (54 Δθ₁ + 92 Δθ₂ + 214 Δθ₃)/105 × Δθ₄` | `α²Ω (ΩT)⁸/(…)`, see `tests/coning.rs` |
+//! | [`FiveSample`] | 5 | `ΣΔθ + (250 Δθ₁ + 525 Δθ₂ + 650 Δθ₃ + 1375 Δθ₄)/504 × Δθ₅` | `α²Ω (ΩT)¹⁰/(…)` |
+//!
+//! `T` is the update interval, `h` the sample interval, `Ω` the coning frequency, `α` the cone half-angle.
+//! The drift coefficients are checked against propagation on the exact coning motion in `tests/coning.rs`.
+
+use crate::{Real, Vec3};
+
+/// A coning correction: the update's rotation vector from its angle increments.
+pub trait ConingCorrection: Copy {
+    /// Short name.
+    fn name(&self) -> &'static str;
+    /// Increments per update this correction expects (`None`: any number).
+    fn samples(&self) -> Option<usize>;
+    /// `φ` (rad) from this update's increments and the previous update's last increment (if any).
+    /// `increments` has the length [`ConingCorrection::samples`] asks for (the propagator checks).
+    fn rotation_vector<T: Real>(
+        &self,
+        previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> Vec3<T>;
+}
+
+fn sum<T: Real>(increments: &[Vec3<T>]) -> Vec3<T> {
+    let mut s = Vec3::ZERO;
+    for d in increments {
+        s += *d;
+    }
+    s
+}
+
+/// `φ = ΣΔθ + (Σ_{i<N} kᵢ Δθᵢ) × Δθ_N`: the compressed N-sample form with coefficients `k` (over `den`).
+fn compressed<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
+    let n = increments.len();
+    let mut weighted = Vec3::ZERO;
+    for (d, &ki) in increments[..n - 1].iter().zip(k) {
+        weighted += *d * T::from_f64(ki / den);
+    }
+    sum(increments) + weighted.cross(increments[n - 1])
+}
+
+/// No correction: `φ = ΣΔθ`. Any number of increments.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Uncorrected;
+
+impl ConingCorrection for Uncorrected {
+    fn name(&self) -> &'static str {
+        "Uncorrected"
+    }
+    fn samples(&self) -> Option<usize> {
+        None
+    }
+    #[inline]
+    fn rotation_vector<T: Real>(
+        &self,
+        _previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> Vec3<T> {
+        sum(increments)
+    }
+}
+
+/// One increment per update plus the previous update's: `φ = Δθ_k + (1/12) Δθ_{k−1} × Δθ_k`
+/// (PX4, KF-GINS). The first update, with no previous increment, is uncorrected.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct OnePlusPrevious;
+
+impl ConingCorrection for OnePlusPrevious {
+    fn name(&self) -> &'static str {
+        "OnePlusPrevious"
+    }
+    fn samples(&self) -> Option<usize> {
+        Some(1)
+    }
+    #[inline]
+    fn rotation_vector<T: Real>(
+        &self,
+        previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> Vec3<T> {
+        let d = increments[0];
+        match previous {
+            Some(p) => d + p.cross(d) * T::from_f64(1.0 / 12.0),
+            None => d,
+        }
+    }
+}
+
+macro_rules! n_sample {
+    ($name:ident, $n:expr, $den:expr, [$($k:expr),*], $doc:expr) => {
+        #[doc = $doc]
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        pub struct $name;
+
+        impl ConingCorrection for $name {
+            fn name(&self) -> &'static str {
+                stringify!($name)
+            }
+            fn samples(&self) -> Option<usize> {
+                Some($n)
+            }
+            #[inline]
+            fn rotation_vector<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> Vec3<T> {
+                compressed(increments, &[$($k),*], $den)
+            }
+        }
+    };
+}
+
+n_sample!(
+    TwoSample,
+    2,
+    3.0,
+    [2.0],
+    "Two increments per update: `φ = Δθ₁ + Δθ₂ + (2/3) Δθ₁ × Δθ₂`."
+);
+n_sample!(
+    ThreeSample,
+    3,
+    20.0,
+    [9.0, 27.0],
+    "Three increments per update, coning-optimal: `φ = ΣΔθ + (9/20 Δθ₁ + 27/20 Δθ₂) × Δθ₃`."
+);
+n_sample!(
+    FourSample,
+    4,
+    105.0,
+    [54.0, 92.0, 214.0],
+    "Four increments per update: `φ = ΣΔθ + (54 Δθ₁ + 92 Δθ₂ + 214 Δθ₃)/105 × Δθ₄`."
+);
+n_sample!(
+    FiveSample,
+    5,
+    504.0,
+    [250.0, 525.0, 650.0, 1375.0],
+    "Five increments per update: `φ = ΣΔθ + (250 Δθ₁ + 525 Δθ₂ + 650 Δθ₃ + 1375 Δθ₄)/504 × Δθ₅`."
+);
+
+/// Any coning correction, chosen at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Method {
+    /// [`Uncorrected`].
+    Uncorrected,
+    /// [`OnePlusPrevious`].
+    OnePlusPrevious,
+    /// [`TwoSample`].
+    TwoSample,
+    /// [`ThreeSample`].
+    ThreeSample,
+    /// [`FourSample`].
+    FourSample,
+    /// [`FiveSample`].
+    FiveSample,
+}
+
+impl Method {
+    /// Every correction.
+    pub const ALL: [Method; 6] = [
+        Method::Uncorrected,
+        Method::OnePlusPrevious,
+        Method::TwoSample,
+        Method::ThreeSample,
+        Method::FourSample,
+        Method::FiveSample,
+    ];
+}
+
+macro_rules! dispatch {
+    ($self:ident, $c:ident => $e:expr) => {
+        match *$self {
+            Method::Uncorrected => {
+                let $c = Uncorrected;
+                $e
+            }
+            Method::OnePlusPrevious => {
+                let $c = OnePlusPrevious;
+                $e
+            }
+            Method::TwoSample => {
+                let $c = TwoSample;
+                $e
+            }
+            Method::ThreeSample => {
+                let $c = ThreeSample;
+                $e
+            }
+            Method::FourSample => {
+                let $c = FourSample;
+                $e
+            }
+            Method::FiveSample => {
+                let $c = FiveSample;
+                $e
+            }
+        }
+    };
+}
+
+impl ConingCorrection for Method {
+    fn name(&self) -> &'static str {
+        dispatch!(self, c => c.name())
+    }
+    fn samples(&self) -> Option<usize> {
+        dispatch!(self, c => c.samples())
+    }
+    fn rotation_vector<T: Real>(
+        &self,
+        previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> Vec3<T> {
+        dispatch!(self, c => c.rotation_vector(previous, increments))
+    }
+}
