@@ -55,6 +55,9 @@ def run_bench():
         m = re.match(r"bench (f32|f64) (\S+) (\S+) (hold|linear|mid) ([\d.]+)$", line)
         if m:
             rows[m.group(1, 2, 3, 4)] = float(m.group(5))
+        k = re.match(r"kahan f32 (\S+) (\S+) (hold|linear|mid) ([\d.]+)$", line)
+        if k:
+            rows[("kahan",) + k.group(1, 2, 3)] = float(k.group(4))
     if "bench done" not in out:
         raise SystemExit("bench did not finish")
     return rows
@@ -277,6 +280,13 @@ def main():
     for s in ("Rk4", "ExpMap"):
         vals = [bench.get(("f64", s, "FirstOrder", i)) for i in ("hold", "linear", "mid")]
         print(f"| {s} | FirstOrder | " + " | ".join(f"{v:.0f}" if v is not None else "–" for v in vals) + " |")
+
+    print("\nCompensated (Kahan) accumulator against the plain one, f32 (target: at most 1.6x):\n")
+    print("| configuration | plain | Kahan | ratio |")
+    print("|---|---|---|---|")
+    for key in sorted(k for k in bench if k[0] == "kahan"):
+        plain = bench[("f32",) + key[1:]]
+        print(f"| {key[1]} + {key[2]}, {key[3]} | {plain:.1f} | {bench[key]:.1f} | {bench[key] / plain:.2f} |")
 
     print("\n### Against the floating-point work each configuration needs (FirstOrder, f32)\n")
     print("`flops`: additions and multiplications the algorithm needs (cost model over the tableaux in "

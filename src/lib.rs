@@ -14,6 +14,7 @@ mod error;
 #[cfg(feature = "embedded-hal")]
 #[cfg_attr(docsrs, doc(cfg(feature = "embedded-hal")))]
 pub mod gyro;
+mod history;
 mod propagator;
 mod quat;
 pub mod rates;
@@ -25,6 +26,7 @@ mod vec3;
 
 pub use convert::{EulerZxz, EulerZyx};
 pub use error::Error;
+pub use history::SampleHistory;
 pub use propagator::Propagator;
 pub use quat::Quat;
 pub use real::Real;

@@ -5,7 +5,7 @@ use crate::coning::ConingCorrection;
 use crate::rates::{Hold, Linear, Quadratic, RateModel, RotationVector};
 use crate::scheme::Scheme;
 use crate::stabilize::Stabilizer;
-use crate::{Error, GyroSample, Quat, Real, Vec3};
+use crate::{Error, GyroSample, Quat, Real, SampleHistory, Vec3};
 
 /// Propagates a body-to-reference attitude quaternion from body-frame gyro rates.
 ///
@@ -187,6 +187,30 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z
         let phi = coning.rotation_vector(self.previous_increment, increments);
         self.step_with(&RotationVector::new(phi, dt), dt)?;
         self.previous_increment = Some(increments[n - 1]);
+        Ok(())
+    }
+
+    /// One step from the previous gyro sample to `w` (rad/s) over `dt` (s), using up to three earlier samples
+    /// kept in `history` (see [`SampleHistory`]): fourth order with one sample per step and no latency.
+    /// The first sample of a history only starts it (no step, `Ok`). `history` is updated only on success.
+    ///
+    /// # Errors
+    /// As [`Propagator::step_with`].
+    pub fn step_history(
+        &mut self,
+        history: &mut SampleHistory<T>,
+        w: Vec3<T>,
+        dt: T,
+    ) -> Result<(), Error> {
+        match history.model(w) {
+            Some(model) => self.step_with(&model, dt)?,
+            None => {
+                if !w.is_finite() {
+                    return Err(Error::NonFiniteRate);
+                }
+            }
+        }
+        history.push(w);
         Ok(())
     }
 

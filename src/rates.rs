@@ -218,3 +218,109 @@ impl<T: Real> RateModel<T> for RotationVector<T> {
         self.phi.is_finite()
     }
 }
+
+/// Rate from the sample history: a cubic through four equally spaced samples ω_{k−2}, ω_{k−1}, ω_k, ω_{k+1},
+/// on the last interval [t_k, t_{k+1}] — fourth order from one gyro sample per step, without latency.
+///
+/// Runge–Kutta stages read the cubic; the exponential map uses the Adams–Moulton integral
+/// `∫ω = h(ω_{k−2} − 5ω_{k−1} + 19ω_k + 9ω_{k+1})/24` plus the Magnus commutator
+/// `(h²/12) ω(t_mid) × (ω_{k+1} − ω_k)` (ω(t_mid) from the cubic). With three samples the same construction
+/// uses a quadratic through ω_{k−1}, ω_k, ω_{k+1} (third order), with two the linear model (second order):
+/// see [`crate::SampleHistory`], which builds the right one as samples arrive. Samples must be equally spaced
+/// (uniform `dt`); with jittered sampling the order drops to that of the linear model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct History<T> {
+    /// Samples at c = −2, −1, 0, 1 (oldest first); with fewer, the leading entries are unused.
+    w: [Vec3<T>; 4],
+    /// 2, 3 or 4 samples.
+    count: u8,
+}
+
+impl<T: Real> History<T> {
+    /// A cubic (4 samples), quadratic (3) or linear (2) model from `samples` (oldest first, uniform spacing,
+    /// the last interval being the step). `None` for fewer than 2 or more than 4 samples.
+    #[must_use]
+    pub fn new(samples: &[Vec3<T>]) -> Option<Self> {
+        let n = samples.len();
+        if !(2..=4).contains(&n) {
+            return None;
+        }
+        let mut w = [Vec3::ZERO; 4];
+        w[4 - n..].copy_from_slice(samples);
+        Some(Self { w, count: n as u8 })
+    }
+
+    /// Lagrange weights at c for the nodes of this model (−2, −1, 0, 1; the unused ones zero).
+    #[inline(always)]
+    fn weights(&self, c: f64) -> [f64; 4] {
+        match self.count {
+            4 => [
+                -(c + 1.0) * c * (c - 1.0) / 6.0,
+                (c + 2.0) * c * (c - 1.0) / 2.0,
+                -(c + 2.0) * (c + 1.0) * (c - 1.0) / 2.0,
+                (c + 2.0) * (c + 1.0) * c / 6.0,
+            ],
+            3 => [
+                0.0,
+                c * (c - 1.0) / 2.0,
+                -(c + 1.0) * (c - 1.0),
+                (c + 1.0) * c / 2.0,
+            ],
+            _ => [0.0, 0.0, 1.0 - c, c],
+        }
+    }
+
+    #[inline(always)]
+    fn combine(&self, k: [f64; 4]) -> Vec3<T> {
+        let mut s = Vec3::ZERO;
+        for (w, &ki) in self.w.iter().zip(&k) {
+            if ki != 0.0 {
+                s += *w * T::from_f64(ki);
+            }
+        }
+        s
+    }
+}
+
+impl<T: Real> RateModel<T> for History<T> {
+    #[inline(always)]
+    fn rate_at(&self, c: f64) -> Vec3<T> {
+        if c == 0.0 {
+            self.w[2]
+        } else if c == 1.0 {
+            self.w[3]
+        } else {
+            self.combine(self.weights(c))
+        }
+    }
+    #[inline(always)]
+    fn held_rate(&self) -> Option<Vec3<T>> {
+        None
+    }
+    #[inline(always)]
+    fn half_rotation_vector(&self, hh: T) -> Vec3<T> {
+        // ∫₀¹ of the Lagrange basis: cubic (1, −5, 19, 9)/24; quadratic (−1, 8, 5)/12; linear (1, 1)/2.
+        let integral = match self.count {
+            4 => [1.0 / 24.0, -5.0 / 24.0, 19.0 / 24.0, 9.0 / 24.0],
+            3 => [0.0, -1.0 / 12.0, 8.0 / 12.0, 5.0 / 12.0],
+            _ => [0.0, 0.0, 0.5, 0.5],
+        };
+        // φ = h∫ω + (h²/12) ω_mid × (ω₁ − ω₀), so with h = 2hh: φ/2 = hh∫ω + (hh²/6) ω_mid × (ω₁ − ω₀).
+        let mean = self.combine(integral) * hh;
+        let mid = self.combine(self.weights(0.5));
+        let comm = mid.cross(self.w[3] - self.w[2]) * (hh * hh * T::from_f64(1.0 / 6.0));
+        mean + comm
+    }
+    #[inline(always)]
+    fn max_rate_squared(&self) -> T {
+        let mut m = T::ZERO;
+        for w in &self.w[4 - self.count as usize..] {
+            m = m.max(w.norm_squared());
+        }
+        m
+    }
+    #[inline(always)]
+    fn is_finite(&self) -> bool {
+        all_finite(&self.w)
+    }
+}

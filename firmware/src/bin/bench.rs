@@ -15,6 +15,7 @@ use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 use defmt_semihosting as _;
 use quatprop::scheme::{Euler, ExpMap, Rk2, Rk3, Rk4, Rk5, Scheme};
 use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Stabilizer};
+use quatprop::accumulate::{Accumulator, Kahan, Plain};
 use quatprop::{Propagator, Quat, Real, Vec3};
 use quatprop_firmware::icount::Counter;
 
@@ -56,9 +57,9 @@ fn baseline<T: Real, const INPUT: u8>(c: &Counter, w: &[Vec3<T>; 8], n: usize) -
 }
 
 #[inline(never)]
-fn steps<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
+fn steps<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>, const INPUT: u8>(
     c: &Counter,
-    p: &mut Propagator<T, S, Z>,
+    p: &mut Propagator<T, S, Z, A>,
     w: &[Vec3<T>; 8],
     dt: T,
     n: usize,
@@ -82,14 +83,35 @@ fn measure<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
     z: Z,
     n: usize,
 ) -> u32 {
-    let w = black_box(rates::<T>());
-    let dt = black_box(T::from_f64(1e-3));
-    let Ok(mut p) = Propagator::new(Quat::<T>::IDENTITY, s, z) else {
+    let Ok(p) = Propagator::new(Quat::<T>::IDENTITY, s, z) else {
         return u32::MAX;
     };
+    measure_propagator::<T, S, Z, Plain, INPUT>(c, p, n)
+}
+
+/// The same with the Kahan-compensated accumulator.
+fn measure_kahan<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
+    c: &Counter,
+    s: S,
+    z: Z,
+    n: usize,
+) -> u32 {
+    let Ok(p) = Propagator::new_compensated(Quat::<T>::IDENTITY, s, z) else {
+        return u32::MAX;
+    };
+    measure_propagator::<T, S, Z, Kahan<T>, INPUT>(c, p, n)
+}
+
+fn measure_propagator<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>, const INPUT: u8>(
+    c: &Counter,
+    mut p: Propagator<T, S, Z, A>,
+    n: usize,
+) -> u32 {
+    let w = black_box(rates::<T>());
+    let dt = black_box(T::from_f64(1e-3));
     // Warm-up (nothing is cached on this core, but keep the first call out of the figure anyway).
-    steps::<T, S, Z, INPUT>(c, &mut p, &w, dt, 1);
-    let total = steps::<T, S, Z, INPUT>(c, &mut p, &w, dt, n);
+    steps::<T, S, Z, A, INPUT>(c, &mut p, &w, dt, 1);
+    let total = steps::<T, S, Z, A, INPUT>(c, &mut p, &w, dt, n);
     let base = baseline::<T, INPUT>(c, &w, n);
     if p.steps() != n as u64 + 1 {
         return u32::MAX;
@@ -162,6 +184,16 @@ fn main() -> ! {
     scheme_rows!(&c, ok, Rk4);
     scheme_rows!(&c, ok, Rk5);
     scheme_rows!(&c, ok, ExpMap);
+    // The compensated (Kahan) accumulator, for the cost ratio against the plain rows above.
+    for (label, v) in [
+        ("ExpMap FirstOrder hold", measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, FirstOrder, 64)),
+        ("ExpMap FirstOrder linear", measure_kahan::<f32, _, _, LINEAR>(&c, ExpMap, FirstOrder, 64)),
+        ("Rk4 FirstOrder linear", measure_kahan::<f32, _, _, LINEAR>(&c, Rk4, FirstOrder, 64)),
+        ("ExpMap Off hold", measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, Off, 64)),
+    ] {
+        ok &= v != u32::MAX;
+        defmt::println!("kahan f32 {=str} {=u32}.{=u32:02}", label, v / 100, v % 100);
+    }
     // Soft-float f64 on the single-precision FPU (16 steps keep the count below SysTick's wrap).
     row!(&c, ok, f64, "f64", 16, Rk4, FirstOrder, "FirstOrder");
     row!(&c, ok, f64, "f64", 16, ExpMap, FirstOrder, "FirstOrder");
