@@ -12,7 +12,7 @@ fn stages(m: Method) -> String {
         Method::Rk3 => Rk3::STAGES.to_string(),
         Method::Rk4 => Rk4::STAGES.to_string(),
         Method::Rk5 => Rk5::STAGES.to_string(),
-        Method::ExpMap => "–".to_string(),
+        Method::ExpMap | Method::Magnus4 | Method::Cf4 => "–".to_string(),
     }
 }
 

@@ -247,7 +247,7 @@ def size_table():
     cargo("build", "-q", *FW, "--bins")
     for b, what in [("smoke", "smoke (every scheme x stabilizer via the runtime enums, defmt)"),
                     ("isr", "isr (Rk4 + FirstOrder, heapless queue, defmt)"),
-                    ("bench", "bench (96 monomorphized loops, defmt)")]:
+                    ("bench", "bench (every measured loop monomorphized, defmt)")]:
         rows.append((what, sizes(elf(b))))
     return rows
 
@@ -255,7 +255,8 @@ def size_table():
 def main():
     bench = run_bench()
     cpi = static_cpi()
-    schemes = ["Euler", "Rk2", "Rk3", "Rk4", "Rk5", "ExpMap"]
+    schemes = ["Euler", "Rk2", "Rk3", "Rk4", "Rk5", "ExpMap", "Magnus4", "Cf4"]
+    flop_schemes = schemes[:6]  # the cost model covers the RK tableaux and the exponential map
     stabs = ["Off", "Normalize", "FirstOrder", "Every(16)", "Baumgarte"]
 
     print("### Instructions per step on the Cortex-M4F (f32)\n")
@@ -296,7 +297,7 @@ def main():
     print("| scheme | input | flops | checks | ld/st | measured | measured / (flops + ld/st) |")
     print("|---|---|---|---|---|---|---|")
     worst = 0.0
-    for s in schemes:
+    for s in flop_schemes:
         for i in ("hold", "linear", "mid"):
             fl = algorithm_flops(s, i)
             ch = validation_flops(s, i)

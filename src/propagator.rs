@@ -2,7 +2,7 @@
 
 use crate::accumulate::{Accumulator, Kahan, Plain};
 use crate::coning::ConingCorrection;
-use crate::rates::{Hold, Linear, Quadratic, RateModel, RotationVector};
+use crate::rates::{GaussPair, Hold, Linear, Quadratic, RateModel, RotationVector};
 use crate::scheme::Scheme;
 use crate::stabilize::Stabilizer;
 use crate::{Error, GyroSample, Quat, Real, SampleHistory, Vec3};
@@ -212,6 +212,16 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z
         }
         history.push(w);
         Ok(())
+    }
+
+    /// One step of `dt` (s) with the rates `w1`, `w2` (rad/s) at the two Gauss points `t + (½ ∓ √3/6)dt`:
+    /// fourth order with [`crate::scheme::Magnus4`], [`crate::scheme::Cf4`] or [`crate::scheme::ExpMap`].
+    ///
+    /// # Errors
+    /// As [`Propagator::step_with`].
+    #[inline]
+    pub fn step_gauss(&mut self, w1: Vec3<T>, w2: Vec3<T>, dt: T) -> Result<(), Error> {
+        self.step_with(&GaussPair::new(w1, w2), dt)
     }
 
     /// One step of `dt` (s) with any [`RateModel`].

@@ -69,7 +69,7 @@ fn closed_form_factor(m: Method, x: f64) -> f64 {
             1.0 / 120.0,
             1.0 / 600.0,
         ],
-        Method::ExpMap => return 1.0,
+        Method::ExpMap | Method::Magnus4 | Method::Cf4 => return 1.0,
     };
     let (mut re, mut im) = (0.0, 0.0);
     let (mut pr, mut pi) = (1.0, 0.0); // (ix)^m

@@ -8,6 +8,8 @@
 //! | [`Rk4`] | 4 | 4 | 4√2 ≈ 5.66 | `1 − x⁶/72 + x⁸/576` |
 //! | [`Rk5`] | 5 | 6 | ≈ 2.00 (see README) | `1 − x⁶/1800 + O(x⁸)` |
 //! | [`ExpMap`] | exact (held), 2 (linear), 4 (three samples) | – | none needed | 1 |
+//! | [`Magnus4`] | 4 from the Gauss-point rates (`step_gauss`, `step_mid`) | – | none needed | 1 |
+//! | [`Cf4`] | 4 from the Gauss-point rates, two exponentials, no cross product | – | none needed | 1 |
 //!
 //! Each scheme is a zero-sized type, so a firmware that names one links only it; [`Method`] chooses one at
 //! run time. The order a step reaches also depends on the input model: with one gyro sample per step, any
@@ -15,11 +17,13 @@
 
 mod exp_map;
 mod explicit_rk;
+mod magnus;
 pub mod tableau;
 mod tableaux;
 
 pub use exp_map::ExpMap;
 pub use explicit_rk::held_rate_step_by_stages;
+pub use magnus::{Cf4, Magnus4};
 pub use tableau::ButcherTableau;
 pub use tableaux::{Euler, Rk2, Rk3, Rk4, Rk5};
 
@@ -92,17 +96,23 @@ pub enum Method {
     Rk5,
     /// [`ExpMap`].
     ExpMap,
+    /// [`Magnus4`].
+    Magnus4,
+    /// [`Cf4`].
+    Cf4,
 }
 
 impl Method {
-    /// Every scheme, in order of increasing cost.
-    pub const ALL: [Method; 6] = [
+    /// Every scheme.
+    pub const ALL: [Method; 8] = [
         Method::Euler,
         Method::Rk2,
         Method::Rk3,
         Method::Rk4,
         Method::Rk5,
         Method::ExpMap,
+        Method::Magnus4,
+        Method::Cf4,
     ];
 }
 
@@ -131,6 +141,14 @@ macro_rules! dispatch {
             }
             Method::ExpMap => {
                 let $s = ExpMap;
+                $e
+            }
+            Method::Magnus4 => {
+                let $s = Magnus4;
+                $e
+            }
+            Method::Cf4 => {
+                let $s = Cf4;
                 $e
             }
         }

@@ -13,9 +13,9 @@ use core::hint::black_box;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 use defmt_semihosting as _;
-use quatprop::scheme::{Euler, ExpMap, Rk2, Rk3, Rk4, Rk5, Scheme};
-use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Stabilizer};
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::scheme::{Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme};
+use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Stabilizer};
 use quatprop::{Propagator, Quat, Real, Vec3};
 use quatprop_firmware::icount::Counter;
 
@@ -184,12 +184,26 @@ fn main() -> ! {
     scheme_rows!(&c, ok, Rk4);
     scheme_rows!(&c, ok, Rk5);
     scheme_rows!(&c, ok, ExpMap);
+    scheme_rows!(&c, ok, Magnus4);
+    scheme_rows!(&c, ok, Cf4);
     // The compensated (Kahan) accumulator, for the cost ratio against the plain rows above.
     for (label, v) in [
-        ("ExpMap FirstOrder hold", measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, FirstOrder, 64)),
-        ("ExpMap FirstOrder linear", measure_kahan::<f32, _, _, LINEAR>(&c, ExpMap, FirstOrder, 64)),
-        ("Rk4 FirstOrder linear", measure_kahan::<f32, _, _, LINEAR>(&c, Rk4, FirstOrder, 64)),
-        ("ExpMap Off hold", measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, Off, 64)),
+        (
+            "ExpMap FirstOrder hold",
+            measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, FirstOrder, 64),
+        ),
+        (
+            "ExpMap FirstOrder linear",
+            measure_kahan::<f32, _, _, LINEAR>(&c, ExpMap, FirstOrder, 64),
+        ),
+        (
+            "Rk4 FirstOrder linear",
+            measure_kahan::<f32, _, _, LINEAR>(&c, Rk4, FirstOrder, 64),
+        ),
+        (
+            "ExpMap Off hold",
+            measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, Off, 64),
+        ),
     ] {
         ok &= v != u32::MAX;
         defmt::println!("kahan f32 {=str} {=u32}.{=u32:02}", label, v / 100, v % 100);
