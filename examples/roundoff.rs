@@ -11,6 +11,7 @@
 //! - `quatprop Plain, f32`: ExpMap + FirstOrder, increment form `q + q ⊗ (e − 1)`;
 //! - `quatprop Kahan, f32`: the same with the compensated accumulator (`Propagator::new_compensated`);
 //! - `f64 state`: ExpMap + FirstOrder in f64 fed the same f32 samples widened: the floor set by f32 inputs.
+//!
 //! `tests/roundoff.rs` runs this and asserts the compensated f32 state within 2× of the f64 state.
 
 use quatprop::coning::Uncorrected;
