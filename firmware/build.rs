@@ -25,7 +25,7 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     if target.starts_with("thumb") {
         println!("cargo:rustc-link-arg-bins=-Tlink.x");
-        for bin in ["smoke", "isr", "bench"] {
+        for bin in ["smoke", "isr", "bench", "stack"] {
             println!("cargo:rustc-link-arg-bin={bin}=-Tdefmt.x");
         }
     }

@@ -207,10 +207,12 @@ def static_cpi():
         if h:
             close()
             key, mix, cyc = None, Counter(), 0
-            s = re.match(r"bench::steps::<(f32|f64), [\w:]*::(\w+), [\w:]*::(\w+)(?:<f32>)?, (\d)>", h.group(1))
+            s = re.match(r"bench::steps::<(f32|f64), [\w:]*::(\w+), [\w:]*::(\w+)(?:<f32>)?, "
+                         r"[\w:]*::(\w+)(?:<f32>)?, (\d)>", h.group(1))
             if s:
                 stab = {"Every": "Every(16)"}.get(s.group(3), s.group(3))
-                key = (s.group(1), s.group(2), stab, ["hold", "linear", "mid"][int(s.group(4))])
+                kind = s.group(1) if s.group(4) == "Plain" else "kahan"
+                key = (kind, s.group(2), stab, ["hold", "linear", "mid"][int(s.group(5))])
             continue
         ins = re.match(r"^\s+[0-9a-f]+:\s+(\S+)\s*(.*)$", line)
         if key and ins and not ins.group(1).startswith("."):

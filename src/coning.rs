@@ -43,13 +43,16 @@ fn sum<T: Real>(increments: &[Vec3<T>]) -> Vec3<T> {
 }
 
 /// `φ = ΣΔθ + (Σ_{i<N} kᵢ Δθᵢ) × Δθ_N`: the compressed N-sample form with coefficients `k` (over `den`).
+/// Panic-free for any slice (empty: zero).
 fn compressed<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
-    let n = increments.len();
+    let Some((last, rest)) = increments.split_last() else {
+        return Vec3::ZERO;
+    };
     let mut weighted = Vec3::ZERO;
-    for (d, &ki) in increments[..n - 1].iter().zip(k) {
+    for (d, &ki) in rest.iter().zip(k) {
         weighted += *d * T::from_f64(ki / den);
     }
-    sum(increments) + weighted.cross(increments[n - 1])
+    sum(increments) + weighted.cross(*last)
 }
 
 /// No correction: `φ = ΣΔθ`. Any number of increments.
@@ -93,7 +96,9 @@ impl ConingCorrection for OnePlusPrevious {
         previous: Option<Vec3<T>>,
         increments: &[Vec3<T>],
     ) -> Vec3<T> {
-        let d = increments[0];
+        let Some(&d) = increments.first() else {
+            return Vec3::ZERO;
+        };
         match previous {
             Some(p) => d + p.cross(d) * T::from_f64(1.0 / 12.0),
             None => d,

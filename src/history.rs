@@ -46,11 +46,13 @@ impl<T: Real> SampleHistory<T> {
     /// The rate model of the step ending at `newest`, or `None` if there is no earlier sample yet.
     #[must_use]
     pub fn model(&self, newest: Vec3<T>) -> Option<History<T>> {
-        let n = self.count as usize;
-        let mut s = [Vec3::ZERO; 4];
-        s[..n].copy_from_slice(&self.w[3 - n..]);
-        s[n] = newest;
-        History::new(&s[..n + 1])
+        let [a, b, c] = self.w;
+        match self.count {
+            0 => None,
+            1 => History::new(&[c, newest]),
+            2 => History::new(&[b, c, newest]),
+            _ => History::new(&[a, b, c, newest]),
+        }
     }
 
     /// Appends `newest`, dropping the oldest beyond three.

@@ -186,7 +186,7 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z
         }
         let phi = coning.rotation_vector(self.previous_increment, increments);
         self.step_with(&RotationVector::new(phi, dt), dt)?;
-        self.previous_increment = Some(increments[n - 1]);
+        self.previous_increment = increments.last().copied();
         Ok(())
     }
 
@@ -249,7 +249,7 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z
         }
         let limit = self.scheme.step_angle_limit();
         if limit.is_finite() {
-            let angle_sq = rates.max_rate_squared() * dt * dt;
+            let angle_sq = rates.max_step_angle_squared(dt);
             let l = T::from_f64(limit);
             if !(angle_sq <= l * l) {
                 return Err(Error::StepAngleBeyondStability {

@@ -19,8 +19,10 @@ pub trait RateModel<T: Real> {
     /// exponential-map schemes: the step is `q ← q ⊗ exp((0, φ/2))`.
     fn half_rotation_vector(&self, hh: T) -> Vec3<T>;
 
-    /// `max |ω|²` over the samples (rad²/s²), for the step-angle check. Not finite if a sample is not.
-    fn max_rate_squared(&self) -> T;
+    /// `max |ω h|²` over the samples (rad²): the squared step angle for the stability check, formed as
+    /// `|ω·h|²` (scaled before squaring, so a tiny rate times a huge step cannot underflow to zero).
+    /// Infinite if it overflows, which the check refuses.
+    fn max_step_angle_squared(&self, h: T) -> T;
 
     /// `true` if every sample is finite.
     fn is_finite(&self) -> bool;
@@ -56,8 +58,8 @@ impl<T: Real> RateModel<T> for Hold<T> {
         self.w * hh
     }
     #[inline(always)]
-    fn max_rate_squared(&self) -> T {
-        self.w.norm_squared()
+    fn max_step_angle_squared(&self, h: T) -> T {
+        (self.w * h).norm_squared()
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
@@ -107,8 +109,10 @@ impl<T: Real> RateModel<T> for Linear<T> {
         mean + comm
     }
     #[inline(always)]
-    fn max_rate_squared(&self) -> T {
-        self.w0.norm_squared().max(self.w1.norm_squared())
+    fn max_step_angle_squared(&self, h: T) -> T {
+        (self.w0 * h)
+            .norm_squared()
+            .max((self.w1 * h).norm_squared())
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
@@ -166,11 +170,11 @@ impl<T: Real> RateModel<T> for Quadratic<T> {
         simpson + comm
     }
     #[inline(always)]
-    fn max_rate_squared(&self) -> T {
-        self.w0
+    fn max_step_angle_squared(&self, h: T) -> T {
+        (self.w0 * h)
             .norm_squared()
-            .max(self.wm.norm_squared())
-            .max(self.w1.norm_squared())
+            .max((self.wm * h).norm_squared())
+            .max((self.w1 * h).norm_squared())
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
@@ -210,8 +214,8 @@ impl<T: Real> RateModel<T> for RotationVector<T> {
         self.phi * T::HALF
     }
     #[inline(always)]
-    fn max_rate_squared(&self) -> T {
-        self.phi.norm_squared() / (self.h * self.h)
+    fn max_step_angle_squared(&self, _h: T) -> T {
+        self.phi.norm_squared()
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
@@ -241,13 +245,14 @@ impl<T: Real> History<T> {
     /// the last interval being the step). `None` for fewer than 2 or more than 4 samples.
     #[must_use]
     pub fn new(samples: &[Vec3<T>]) -> Option<Self> {
-        let n = samples.len();
-        if !(2..=4).contains(&n) {
-            return None;
-        }
-        let mut w = [Vec3::ZERO; 4];
-        w[4 - n..].copy_from_slice(samples);
-        Some(Self { w, count: n as u8 })
+        let z = Vec3::ZERO;
+        let (w, count) = match *samples {
+            [a, b] => ([z, z, a, b], 2),
+            [a, b, c] => ([z, a, b, c], 3),
+            [a, b, c, d] => ([a, b, c, d], 4),
+            _ => return None,
+        };
+        Some(Self { w, count })
     }
 
     /// Lagrange weights at c for the nodes of this model (−2, −1, 0, 1; the unused ones zero).
@@ -312,10 +317,11 @@ impl<T: Real> RateModel<T> for History<T> {
         mean + comm
     }
     #[inline(always)]
-    fn max_rate_squared(&self) -> T {
+    fn max_step_angle_squared(&self, h: T) -> T {
+        // Unused leading entries are zero, so the maximum over all four is the maximum over the samples.
         let mut m = T::ZERO;
-        for w in &self.w[4 - self.count as usize..] {
-            m = m.max(w.norm_squared());
+        for w in &self.w {
+            m = m.max((*w * h).norm_squared());
         }
         m
     }
@@ -370,8 +376,10 @@ impl<T: Real> RateModel<T> for GaussPair<T> {
         magnus4_half(self.w1, self.w2, hh)
     }
     #[inline(always)]
-    fn max_rate_squared(&self) -> T {
-        self.w1.norm_squared().max(self.w2.norm_squared())
+    fn max_step_angle_squared(&self, h: T) -> T {
+        (self.w1 * h)
+            .norm_squared()
+            .max((self.w2 * h).norm_squared())
     }
     #[inline(always)]
     fn is_finite(&self) -> bool {
