@@ -7,6 +7,12 @@
 //! with the propagator bit-for-bit unchanged.
 
 use proptest::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Entry-point calls executed by the invariant property (printed with --nocapture; a long run is
+/// `PROPTEST_CASES=2000000 cargo test --release --test properties every_call -- --nocapture`).
+static CALLS: AtomicU64 = AtomicU64::new(0);
+static ERRORS: AtomicU64 = AtomicU64::new(0);
 use quatprop::coning;
 use quatprop::scheme::{ExpMap, Method, Scheme};
 use quatprop::stabilize::{FirstOrder, Off, Policy};
@@ -73,6 +79,7 @@ proptest! {
         for (kind, a, b, c, dt) in calls {
             let before = bits(&p);
             let hist_before = history;
+            CALLS.fetch_add(1, Ordering::Relaxed);
             let r = match kind {
                 0 => p.step_hold(a, dt),
                 1 => p.step_linear(a, b, dt),
@@ -90,6 +97,7 @@ proptest! {
                     }
                 }
                 Err(_) => {
+                    ERRORS.fetch_add(1, Ordering::Relaxed);
                     prop_assert_eq!(bits(&p), before, "state changed on error");
                     prop_assert_eq!(history, hist_before, "history changed on error");
                 }
@@ -183,6 +191,17 @@ proptest! {
         let z = Quat::from_euler_zxz(quatprop::EulerZxz { psi: yaw, theta: tilt, phi: roll });
         prop_assert!(z.angle_to(Quat::from_euler_zxz(z.to_euler_zxz())) < 1e-14);
     }
+}
+
+#[test]
+fn zz_report_call_count() {
+    // Runs after the properties in the default alphabetical order when tests run single-threaded; otherwise
+    // it may print a partial count. Informational only.
+    println!(
+        "invariant property: {} entry-point calls, {} of them refused",
+        CALLS.load(Ordering::Relaxed),
+        ERRORS.load(Ordering::Relaxed)
+    );
 }
 
 #[test]
