@@ -1,0 +1,189 @@
+//! The seed paper's figures: N(t) under RK4 (Fig. 1) and the limit N∞ against the Baumgarte gain k (Fig. 2).
+
+use crate::plot::{plot, Axis, Series};
+use crate::Ctx;
+use quatprop::rates::Hold;
+use quatprop::scheme::{Rk4, Scheme};
+use quatprop::stabilize::{Baumgarte, Normalize, Off, Stabilizer};
+use quatprop::{Propagator, Quat, Vec3};
+use std::fmt::Write as _;
+
+/// Fig. 1: constant rotation |ω| = 1 rad/s about z, 30 steps per period, 30 periods (the seed's setting);
+/// N(t) without stabilization, with Baumgarte k = 0.5, with normalization, and the closed form (1 − β)^j − 1.
+pub fn figure1(ctx: &mut Ctx) -> String {
+    let h = 2.0 * core::f64::consts::PI / 30.0;
+    let w = Vec3::new(0.0, 0.0, 1.0);
+    let steps = 900;
+    let beta = (h.powi(6) / 4608.0) * (1.0 - h * h / 32.0);
+    let mut off = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Off).unwrap();
+    let mut baum = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Baumgarte { k: 0.5 }).unwrap();
+    let mut norm = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Normalize).unwrap();
+    let (mut a, mut b, mut c, mut d) = (vec![], vec![], vec![], vec![]);
+    let mut csv = String::from("t,N_off,N_closed_form,N_baumgarte,N_normalize\n");
+    for j in 1..=steps {
+        off.step_hold(w, h).unwrap();
+        baum.step_hold(w, h).unwrap();
+        norm.step_hold(w, h).unwrap();
+        let t = j as f64 * h;
+        let closed = (1.0 - beta).powi(j) - 1.0;
+        a.push((t, -off.norm_error()));
+        b.push((t, -closed));
+        c.push((t, -baum.norm_error()));
+        d.push((t, norm.norm_error().abs().max(1e-18)));
+        let _ = writeln!(csv, "{t},{},{closed},{},{}", off.norm_error(), baum.norm_error(), norm.norm_error());
+    }
+    ctx.csv("geiger_fig1.csv", &csv);
+    ctx.plot(|dir| {
+        plot(
+            dir,
+            "geiger_fig1",
+            "Seed Fig. 1: norm error N(t), RK4, H|w| = 2pi/30",
+            Axis { label: "t (s)", log: false },
+            Axis { label: "-N = 1 - |q|^2 (|N| for Normalize)", log: true },
+            &[
+                Series::line("RK4, no stabilization", a),
+                Series::line("closed form (1-beta)^j - 1", b).dashed(),
+                Series::line("RK4 + Baumgarte k = 0.5", c),
+                Series::line("RK4 + Normalize (|N|)", d),
+            ],
+        )
+    });
+    format!(
+        "### The seed's Fig. 1: N(t) under RK4\n\n![N(t)](geiger_fig1.png)\n\n\
+         Constant rotation |ω| = 1 rad/s, 30 steps per period, 30 periods. Without stabilization N follows the \
+         closed form (1 − β)^j − 1 with β = {beta:.4e} (the two curves coincide: final N = {:.6e} vs {:.6e}); \
+         Baumgarte k = 0.5 jumps to N₁ = {:.3e} on the first step and settles at N∞ = {:.4e}; normalization holds \
+         |N| at {:.1e}.\n",
+        off.norm_error(),
+        (1.0 - beta).powi(steps) - 1.0,
+        first_step_n(0.5, h),
+        baum.norm_error(),
+        norm.norm_error().abs()
+    )
+}
+
+fn first_step_n(k: f64, h: f64) -> f64 {
+    let mut p = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Baumgarte { k }).unwrap();
+    p.step_hold(Vec3::new(0.0, 0.0, 1.0), h).unwrap();
+    p.norm_error()
+}
+
+/// One RK4 + Baumgarte step of a permanent rotation about z from |q|² = 1 + n: returns the new N.
+/// By symmetry the map depends on N only (the seed's eq. (9)); computed with the unchecked scheme step.
+fn step_map(k: f64, h: f64, n: f64) -> f64 {
+    let q = Quat::new((1.0 + n).sqrt(), 0.0, 0.0, 0.0);
+    let next = Rk4.advance(q, &Hold::new(Vec3::new(0.0, 0.0, 1.0)), h, &Baumgarte { k });
+    next.norm_error()
+}
+
+/// N∞: the fixed point of the step map near 0 (Newton on F(N) − N with a numerical derivative), and whether
+/// it attracts (|F'(N∞)| < 1). `None` if no fixed point is found near 0.
+fn n_infinity(k: f64, h: f64) -> Option<(f64, bool)> {
+    let _ = Baumgarte { k }.validate();
+    let mut n = 0.0;
+    for _ in 0..60 {
+        let f = step_map(k, h, n) - n;
+        let d = 1e-7 * (1.0 + n.abs());
+        let fp = (step_map(k, h, n + d) - step_map(k, h, n - d)) / (2.0 * d) - 1.0;
+        if fp == 0.0 || !fp.is_finite() {
+            return None;
+        }
+        let next = n - f / fp;
+        if !next.is_finite() || next.abs() > 0.5 {
+            return None;
+        }
+        if (next - n).abs() < 1e-17 + 1e-13 * n.abs() {
+            n = next;
+            break;
+        }
+        n = next;
+    }
+    let d = 1e-7;
+    let slope = (step_map(k, h, n + d) - step_map(k, h, n - d)) / (2.0 * d);
+    Some((n, slope.abs() < 1.0))
+}
+
+/// Fig. 2: |N∞| against k (log axes) at several step angles; the two optimal k (zeros of N∞) to 6 digits,
+/// and where the iteration diverges.
+pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
+    let mut out = String::from(
+        "### The seed's Fig. 2: N∞ against the Baumgarte gain k\n\n![N∞(k)](geiger_fig2.png)\n\n\
+         Permanent rotation |ω| = 1 rad/s under RK4. N∞ is the fixed point of the per-step map N → F(N) (the seed's \
+         eq. (9), evaluated with the library's unchecked step), found by Newton iteration; it is marked divergent \
+         where |F'(N∞)| ≥ 1. The optimal gains are the zeros of N∞(k), located by bisection on sign changes.\n\n\
+         | H|ω| | optimal k₁ | optimal k₂ | iteration diverges for k above | library refuses 4kH > 2.785 above k = |\n|---|---|---|---|---|\n",
+    );
+    let mut series = Vec::new();
+    let mut csv = String::from("h_omega,k,n_inf,attracting\n");
+    let points = if quick { 60 } else { 400 };
+    for hw in [0.1, 0.2, 0.5, 2.0 * core::f64::consts::PI / 30.0] {
+        let ks: Vec<f64> = (0..points).map(|i| 10f64.powf(-4.0 + 6.0 * i as f64 / (points - 1) as f64)).collect();
+        let mut pts = Vec::new();
+        let mut prev: Option<(f64, f64)> = None;
+        let mut roots = Vec::new();
+        let mut diverge_at = None;
+        for &k in &ks {
+            ctx.tick();
+            match n_infinity(k, hw) {
+                Some((n, true)) => {
+                    pts.push((k, n.abs().max(1e-20)));
+                    let _ = writeln!(csv, "{hw},{k},{n},1");
+                    if let Some((k0, n0)) = prev {
+                        if n0.signum() != n.signum() && n0 != 0.0 {
+                            roots.push(bisect(k0, k, hw));
+                        }
+                    }
+                    prev = Some((k, n));
+                }
+                other => {
+                    let _ = writeln!(csv, "{hw},{k},{},0", other.map_or(f64::NAN, |o| o.0));
+                    if diverge_at.is_none() && k > 1e-2 {
+                        diverge_at = Some(k);
+                    }
+                    prev = None;
+                }
+            }
+        }
+        let fmt = |r: Option<&f64>| r.map_or("–".to_string(), |v| format!("{v:.6}"));
+        let _ = writeln!(
+            out,
+            "| {hw:.4} | {} | {} | {} | {:.4} |",
+            fmt(roots.first()),
+            fmt(roots.get(1)),
+            diverge_at.map_or("–".to_string(), |k| format!("{k:.3}")),
+            2.785_294 / (4.0 * hw)
+        );
+        series.push(Series::line(format!("H|w| = {hw:.3}"), pts));
+    }
+    ctx.csv("geiger_fig2.csv", &csv);
+    ctx.plot(|dir| {
+        plot(
+            dir,
+            "geiger_fig2",
+            "Seed Fig. 2: |N_inf| against Baumgarte k (RK4, |w| = 1 rad/s)",
+            Axis { label: "k (1/s)", log: true },
+            Axis { label: "|N_inf|", log: true },
+            &series,
+        )
+    });
+    out
+}
+
+/// The zero of N∞(k) between k0 and k1, to 6 significant digits.
+fn bisect(mut a: f64, mut b: f64, hw: f64) -> f64 {
+    let f = |k: f64| n_infinity(k, hw).map_or(f64::NAN, |v| v.0);
+    let fa = f(a);
+    for _ in 0..80 {
+        let m = (a * b).sqrt();
+        let fm = f(m);
+        if fm.signum() == fa.signum() {
+            a = m;
+        } else {
+            b = m;
+        }
+        if (b - a) / b < 1e-9 {
+            break;
+        }
+    }
+    (a * b).sqrt()
+}

@@ -1,0 +1,208 @@
+//! Minimal plotting: line and scatter series on linear or log axes, written as SVG and rendered to PNG.
+// The SVG templates are multi-line raw strings that end in a newline; `write!` is what they need.
+#![allow(clippy::write_with_newline)]
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One axis.
+#[derive(Clone, Copy)]
+pub struct Axis {
+    pub label: &'static str,
+    pub log: bool,
+}
+
+/// One series: points, drawn as a line, markers or both.
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+    pub line: bool,
+    pub marker: bool,
+    pub dashed: bool,
+}
+
+impl Series {
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { name: name.into(), points, line: true, marker: false, dashed: false }
+    }
+    pub fn both(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { name: name.into(), points, line: true, marker: true, dashed: false }
+    }
+    pub fn dashed(mut self) -> Self {
+        self.dashed = true;
+        self
+    }
+}
+
+const COLORS: [&str; 12] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+    "#7f7f7f", "#bcbd22", "#000000", "#aec7e8",
+];
+
+fn fwd(v: f64, log: bool) -> Option<f64> {
+    if log {
+        (v > 0.0 && v.is_finite()).then(|| v.log10())
+    } else {
+        v.is_finite().then_some(v)
+    }
+}
+
+fn tick_label(v: f64, log: bool) -> String {
+    if log {
+        format!("1e{}", v.round() as i64)
+    } else if v.abs() >= 1e4 || (v != 0.0 && v.abs() < 1e-2) {
+        format!("{v:.1e}")
+    } else {
+        format!("{}", (v * 1000.0).round() / 1000.0)
+    }
+}
+
+/// Writes `name.svg` and `name.png` in `dir`.
+pub fn plot(dir: &Path, name: &str, title: &str, x: Axis, y: Axis, series: &[Series]) -> std::io::Result<()> {
+    let (w, h) = (1180.0, 560.0);
+    let (l, r, t, b) = (80.0, 420.0, 40.0, 60.0);
+    let pts: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter_map(|&(a, c)| Some((fwd(a, x.log)?, fwd(c, y.log)?)))
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), &(px, py)| (a.min(px), b.max(px), c.min(py), d.max(py)),
+    );
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if x.log {
+        x0 = x0.floor();
+        x1 = x1.ceil().max(x0 + 1.0);
+    }
+    if y.log {
+        y0 = y0.floor();
+        y1 = y1.ceil().max(y0 + 1.0);
+    }
+    if x1 <= x0 {
+        x1 = x0 + 1.0;
+    }
+    if y1 <= y0 {
+        y1 = y0 + 1.0;
+    }
+    let px = |v: f64| l + (v - x0) / (x1 - x0) * (w - l - r);
+    let py = |v: f64| h - b - (v - y0) / (y1 - y0) * (h - t - b);
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans" font-size="13">
+<rect width="100%" height="100%" fill="white"/>
+<text x="{}" y="24" font-size="16" text-anchor="middle">{}</text>
+"#,
+        (l + w - r) / 2.0,
+        xml(title)
+    );
+    // Grid and ticks.
+    let ticks = |a: f64, c: f64, log: bool| -> Vec<f64> {
+        if log {
+            let step = ((c - a) / 8.0).ceil().max(1.0);
+            let mut v = a;
+            let mut out = Vec::new();
+            while v <= c + 1e-9 {
+                out.push(v);
+                v += step;
+            }
+            out
+        } else {
+            (0..=5).map(|i| a + (c - a) * i as f64 / 5.0).collect()
+        }
+    };
+    for v in ticks(x0, x1, x.log) {
+        let _ = write!(
+            s,
+            r##"<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#ddd"/><text x="{0}" y="{3}" text-anchor="middle">{4}</text>
+"##,
+            px(v),
+            t,
+            h - b,
+            h - b + 18.0,
+            tick_label(v, x.log)
+        );
+    }
+    for v in ticks(y0, y1, y.log) {
+        let _ = write!(
+            s,
+            r##"<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#ddd"/><text x="{3}" y="{4}" text-anchor="end">{5}</text>
+"##,
+            l,
+            py(v),
+            w - r,
+            l - 6.0,
+            py(v) + 4.0,
+            tick_label(v, y.log)
+        );
+    }
+    let _ = write!(
+        s,
+        r##"<rect x="{l}" y="{t}" width="{}" height="{}" fill="none" stroke="#333"/>
+<text x="{}" y="{}" text-anchor="middle">{}</text>
+<text x="18" y="{}" text-anchor="middle" transform="rotate(-90 18 {})">{}</text>
+"##,
+        w - l - r,
+        h - t - b,
+        (l + w - r) / 2.0,
+        h - 18.0,
+        xml(x.label),
+        (t + h - b) / 2.0,
+        (t + h - b) / 2.0,
+        xml(y.label)
+    );
+    for (i, se) in series.iter().enumerate() {
+        let c = COLORS[i % COLORS.len()];
+        let p: Vec<(f64, f64)> = se
+            .points
+            .iter()
+            .filter_map(|&(a, d)| Some((px(fwd(a, x.log)?), py(fwd(d, y.log)?))))
+            .collect();
+        if se.line && p.len() > 1 {
+            let d: Vec<String> = p.iter().map(|(a, b)| format!("{a:.1},{b:.1}")).collect();
+            let dash = if se.dashed { r#" stroke-dasharray="6 4""# } else { "" };
+            let _ = writeln!(
+                s,
+                r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="1.8"{dash}/>"#,
+                d.join(" ")
+            );
+        }
+        if se.marker {
+            for (a, b) in &p {
+                let _ = writeln!(s, r#"<circle cx="{a:.1}" cy="{b:.1}" r="3.2" fill="{c}"/>"#);
+            }
+        }
+        let ly = t + 10.0 + 18.0 * i as f64;
+        let _ = writeln!(
+            s,
+            r#"<rect x="{}" y="{}" width="14" height="4" fill="{c}"/><text x="{}" y="{}">{}</text>"#,
+            w - r + 12.0,
+            ly,
+            w - r + 32.0,
+            ly + 6.0,
+            xml(&se.name)
+        );
+    }
+    s.push_str("</svg>\n");
+    std::fs::write(dir.join(format!("{name}.svg")), &s)?;
+    png(&s, &dir.join(format!("{name}.png")))
+}
+
+fn xml(t: &str) -> String {
+    t.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+fn png(svg: &str, path: &Path) -> std::io::Result<()> {
+    use resvg::{tiny_skia, usvg};
+    let mut opt = usvg::Options::default();
+    opt.fontdb_mut().load_system_fonts();
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| std::io::Error::other(e.to_string()))?;
+    let size = tree.size().to_int_size();
+    let mut pix = tiny_skia::Pixmap::new(size.width(), size.height())
+        .ok_or_else(|| std::io::Error::other("empty plot"))?;
+    resvg::render(&tree, tiny_skia::Transform::default(), &mut pix.as_mut());
+    pix.save_png(path).map_err(|e| std::io::Error::other(e.to_string()))
+}
