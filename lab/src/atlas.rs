@@ -12,7 +12,9 @@ use std::fmt::Write as _;
 
 pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
     let n = if quick { 120 } else { 2000 };
-    let angles: Vec<f64> = (0..n).map(|i| 10f64.powf(-4.0 + 5.0 * i as f64 / (n - 1) as f64)).collect();
+    let angles: Vec<f64> = (0..n)
+        .map(|i| 10f64.powf(-4.0 + 5.0 * i as f64 / (n - 1) as f64))
+        .collect();
     let axis = Vec3::new(0.36, -0.48, 0.8);
     let mut norm_series = Vec::new();
     let mut err_series = Vec::new();
@@ -46,8 +48,14 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
             table,
             "| {} | {} | {} | {} |",
             m.name(),
-            if theory.is_finite() { format!("{theory:.4}") } else { "none".into() },
-            crossed.map_or("never (norm factor ≤ 1 everywhere)".into(), |a| format!("{a:.4}")),
+            if theory.is_finite() {
+                format!("{theory:.4}")
+            } else {
+                "none".into()
+            },
+            crossed.map_or("never (norm factor ≤ 1 everywhere)".into(), |a| format!(
+                "{a:.4}"
+            )),
             match (theory.is_finite(), crossed) {
                 (true, Some(a)) => format!("{:+.2}%", 100.0 * (a / theory - 1.0)),
                 (false, None) => "exact".into(),
@@ -63,8 +71,14 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
             dir,
             "stability_norm",
             "Per-step norm change | |R(ix)|^2 - 1 | against the step angle",
-            Axis { label: "step angle H|w| (rad)", log: true },
-            Axis { label: "| |q1|^2 - 1 |", log: true },
+            Axis {
+                label: "step angle H|w| (rad)",
+                log: true,
+            },
+            Axis {
+                label: "| |q1|^2 - 1 |",
+                log: true,
+            },
             &norm_series,
         )
     });
@@ -73,8 +87,14 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
             dir,
             "stability_error",
             "Attitude error of one step against the step angle",
-            Axis { label: "step angle H|w| (rad)", log: true },
-            Axis { label: "angle error (rad)", log: true },
+            Axis {
+                label: "step angle H|w| (rad)",
+                log: true,
+            },
+            Axis {
+                label: "angle error (rad)",
+                log: true,
+            },
             &err_series,
         )
     });

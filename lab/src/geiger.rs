@@ -30,7 +30,13 @@ pub fn figure1(ctx: &mut Ctx) -> String {
         b.push((t, -closed));
         c.push((t, -baum.norm_error()));
         d.push((t, norm.norm_error().abs().max(1e-18)));
-        let _ = writeln!(csv, "{t},{},{closed},{},{}", off.norm_error(), baum.norm_error(), norm.norm_error());
+        let _ = writeln!(
+            csv,
+            "{t},{},{closed},{},{}",
+            off.norm_error(),
+            baum.norm_error(),
+            norm.norm_error()
+        );
     }
     ctx.csv("geiger_fig1.csv", &csv);
     ctx.plot(|dir| {
@@ -38,8 +44,14 @@ pub fn figure1(ctx: &mut Ctx) -> String {
             dir,
             "geiger_fig1",
             "Seed Fig. 1: norm error N(t), RK4, H|w| = 2pi/30",
-            Axis { label: "t (s)", log: false },
-            Axis { label: "-N = 1 - |q|^2 (|N| for Normalize)", log: true },
+            Axis {
+                label: "t (s)",
+                log: false,
+            },
+            Axis {
+                label: "-N = 1 - |q|^2 (|N| for Normalize)",
+                log: true,
+            },
             &[
                 Series::line("RK4, no stabilization", a),
                 Series::line("closed form (1-beta)^j - 1", b).dashed(),
@@ -117,7 +129,9 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
     let mut csv = String::from("h_omega,k,n_inf,attracting\n");
     let points = if quick { 60 } else { 400 };
     for hw in [0.1, 0.2, 0.5, 2.0 * core::f64::consts::PI / 30.0] {
-        let ks: Vec<f64> = (0..points).map(|i| 10f64.powf(-4.0 + 6.0 * i as f64 / (points - 1) as f64)).collect();
+        let ks: Vec<f64> = (0..points)
+            .map(|i| 10f64.powf(-4.0 + 6.0 * i as f64 / (points - 1) as f64))
+            .collect();
         let mut pts = Vec::new();
         let mut prev: Option<(f64, f64)> = None;
         let mut roots = Vec::new();
@@ -161,8 +175,14 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
             dir,
             "geiger_fig2",
             "Seed Fig. 2: |N_inf| against Baumgarte k (RK4, |w| = 1 rad/s)",
-            Axis { label: "k (1/s)", log: true },
-            Axis { label: "|N_inf|", log: true },
+            Axis {
+                label: "k (1/s)",
+                log: true,
+            },
+            Axis {
+                label: "|N_inf|",
+                log: true,
+            },
             &series,
         )
     });

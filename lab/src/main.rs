@@ -2,11 +2,12 @@
 //!
 //! `cargo run --release -p quatprop-lab -- report [--quick] [--out DIR]` writes `DIR/README.md` (default
 //! `report/`) with plots (SVG and PNG) and CSV files. Sub-commands run one study:
-//! `geiger`, `atlas`, `work-precision`. `--quick` shrinks every study (CI checks that each one runs and writes
+//! `geiger`, `atlas`, `work-precision`, `long-horizon`. `--quick` shrinks every study (CI checks that each one runs and writes
 //! its figures).
 
 mod atlas;
 mod geiger;
+mod long_horizon;
 mod peers;
 mod plot;
 mod work_precision;
@@ -47,7 +48,12 @@ impl Ctx {
         self.ticks += 1;
         if self.terminal && self.last_progress.elapsed().as_secs_f64() > 0.25 {
             self.last_progress = Instant::now();
-            eprint!("\r[{:6.1} s] {:16} {:6} work items", self.started.elapsed().as_secs_f64(), self.study, self.ticks);
+            eprint!(
+                "\r[{:6.1} s] {:16} {:6} work items",
+                self.started.elapsed().as_secs_f64(),
+                self.study,
+                self.ticks
+            );
             let _ = std::io::stderr().flush();
         }
     }
@@ -70,25 +76,30 @@ impl Ctx {
 
 fn usage() -> ! {
     eprintln!(
-        "usage: quatprop-lab <report|geiger|atlas|work-precision> [--quick] [--out DIR]\n\
+        "usage: quatprop-lab <report|geiger|atlas|work-precision|long-horizon> [--quick|--long] [--out DIR]\n\
          report          all studies, README.md + plots (SVG, PNG) + CSV in DIR (default report/)\n\
          geiger          the seed paper's Fig. 1 and Fig. 2 (N(t) under RK4; N-infinity against k)\n\
          atlas           per-step norm factor and error against the step angle, measured stability bounds\n\
          work-precision  coning in f32: error against host time, quatprop against the peers\n\
-         --quick         small grids and horizons (what CI runs)"
+         long-horizon    error growth to 1e8 steps (f32 every scheme, compensated f32, f64)\n\
+         --quick         small grids and horizons (what CI runs); --long: 1e9 steps in long-horizon"
     );
     std::process::exit(2)
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let Some(cmd) = args.first().cloned() else { usage() };
+    let Some(cmd) = args.first().cloned() else {
+        usage()
+    };
     let mut quick = false;
+    let mut long = false;
     let mut out = PathBuf::from("report");
     let mut i = 1;
     while i < args.len() {
         match args[i].as_str() {
             "--quick" => quick = true,
+            "--long" => long = true,
             "--out" => {
                 i += 1;
                 out = args.get(i).map(PathBuf::from).unwrap_or_else(|| usage());
@@ -105,29 +116,56 @@ fn main() {
         std::process::exit(1);
     }
     let mut ctx = Ctx::new(out.clone());
+    let horizon: u64 = if quick {
+        1_000_000
+    } else if long {
+        1_000_000_000
+    } else {
+        100_000_000
+    };
     let mut sections = Vec::new();
     let run = |ctx: &mut Ctx, name: &'static str, f: &dyn Fn(&mut Ctx) -> String| {
         ctx.study = name;
         let t0 = Instant::now();
         let s = f(ctx);
-        eprintln!("\r{name}: done in {:.1} s{:30}", t0.elapsed().as_secs_f64(), "");
+        eprintln!(
+            "\r{name}: done in {:.1} s{:30}",
+            t0.elapsed().as_secs_f64(),
+            ""
+        );
         s
     };
     match cmd.as_str() {
         "report" => {
             sections.push(run(&mut ctx, "geiger fig 1", &geiger::figure1));
-            sections.push(run(&mut ctx, "geiger fig 2", &|c| geiger::figure2(c, quick)));
-            sections.push(run(&mut ctx, "stability atlas", &|c| atlas::atlas(c, quick)));
-            sections.push(run(&mut ctx, "work-precision", &|c| work_precision::work_precision(c, quick)));
+            sections.push(run(&mut ctx, "geiger fig 2", &|c| {
+                geiger::figure2(c, quick)
+            }));
+            sections.push(run(&mut ctx, "stability atlas", &|c| {
+                atlas::atlas(c, quick)
+            }));
+            sections.push(run(&mut ctx, "work-precision", &|c| {
+                work_precision::work_precision(c, quick)
+            }));
+            sections.push(run(&mut ctx, "long horizon", &|c| {
+                long_horizon::long_horizon(c, horizon)
+            }));
         }
         "geiger" => {
             sections.push(run(&mut ctx, "geiger fig 1", &geiger::figure1));
-            sections.push(run(&mut ctx, "geiger fig 2", &|c| geiger::figure2(c, quick)));
+            sections.push(run(&mut ctx, "geiger fig 2", &|c| {
+                geiger::figure2(c, quick)
+            }));
         }
-        "atlas" => sections.push(run(&mut ctx, "stability atlas", &|c| atlas::atlas(c, quick))),
-        "work-precision" => {
-            sections.push(run(&mut ctx, "work-precision", &|c| work_precision::work_precision(c, quick)))
-        }
+        "atlas" => sections.push(run(&mut ctx, "stability atlas", &|c| {
+            atlas::atlas(c, quick)
+        })),
+        "long-horizon" => sections.push(run(&mut ctx, "long horizon", &|c| {
+            long_horizon::long_horizon(c, horizon)
+        })),
+        "work-precision" => sections.push(run(&mut ctx, "work-precision", &|c| {
+            work_precision::work_precision(c, quick)
+        })),
         _ => usage(),
     }
     let md = format!(

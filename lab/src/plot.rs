@@ -23,10 +23,22 @@ pub struct Series {
 
 impl Series {
     pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { name: name.into(), points, line: true, marker: false, dashed: false }
+        Self {
+            name: name.into(),
+            points,
+            line: true,
+            marker: false,
+            dashed: false,
+        }
     }
     pub fn both(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { name: name.into(), points, line: true, marker: true, dashed: false }
+        Self {
+            name: name.into(),
+            points,
+            line: true,
+            marker: true,
+            dashed: false,
+        }
     }
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
@@ -58,7 +70,14 @@ fn tick_label(v: f64, log: bool) -> String {
 }
 
 /// Writes `name.svg` and `name.png` in `dir`.
-pub fn plot(dir: &Path, name: &str, title: &str, x: Axis, y: Axis, series: &[Series]) -> std::io::Result<()> {
+pub fn plot(
+    dir: &Path,
+    name: &str,
+    title: &str,
+    x: Axis,
+    y: Axis,
+    series: &[Series],
+) -> std::io::Result<()> {
     let (w, h) = (1180.0, 560.0);
     let (l, r, t, b) = (80.0, 420.0, 40.0, 60.0);
     let pts: Vec<(f64, f64)> = series
@@ -67,7 +86,12 @@ pub fn plot(dir: &Path, name: &str, title: &str, x: Axis, y: Axis, series: &[Ser
         .filter_map(|&(a, c)| Some((fwd(a, x.log)?, fwd(c, y.log)?)))
         .collect();
     let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
         |(a, b, c, d), &(px, py)| (a.min(px), b.max(px), c.min(py), d.max(py)),
     );
     if !x0.is_finite() {
@@ -163,7 +187,11 @@ pub fn plot(dir: &Path, name: &str, title: &str, x: Axis, y: Axis, series: &[Ser
             .collect();
         if se.line && p.len() > 1 {
             let d: Vec<String> = p.iter().map(|(a, b)| format!("{a:.1},{b:.1}")).collect();
-            let dash = if se.dashed { r#" stroke-dasharray="6 4""# } else { "" };
+            let dash = if se.dashed {
+                r#" stroke-dasharray="6 4""#
+            } else {
+                ""
+            };
             let _ = writeln!(
                 s,
                 r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="1.8"{dash}/>"#,
@@ -192,7 +220,9 @@ pub fn plot(dir: &Path, name: &str, title: &str, x: Axis, y: Axis, series: &[Ser
 }
 
 fn xml(t: &str) -> String {
-    t.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    t.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 fn png(svg: &str, path: &Path) -> std::io::Result<()> {
@@ -204,5 +234,6 @@ fn png(svg: &str, path: &Path) -> std::io::Result<()> {
     let mut pix = tiny_skia::Pixmap::new(size.width(), size.height())
         .ok_or_else(|| std::io::Error::other("empty plot"))?;
     resvg::render(&tree, tiny_skia::Transform::default(), &mut pix.as_mut());
-    pix.save_png(path).map_err(|e| std::io::Error::other(e.to_string()))
+    pix.save_png(path)
+        .map_err(|e| std::io::Error::other(e.to_string()))
 }

@@ -21,7 +21,11 @@ fn coning_rate(t: f64) -> Vec3<f64> {
     let o = 2.0 * core::f64::consts::PI;
     let p = o * t;
     let s2 = (0.15f64).sin();
-    Vec3::new(-o * 0.3f64.sin() * p.sin(), o * 0.3f64.sin() * p.cos(), -2.0 * o * s2 * s2)
+    Vec3::new(
+        -o * 0.3f64.sin() * p.sin(),
+        o * 0.3f64.sin() * p.cos(),
+        -2.0 * o * s2 * s2,
+    )
 }
 
 type Runner = fn(&[Vec3<f32>], f32, Quat<f32>) -> Quat<f32>;
@@ -66,27 +70,55 @@ fn quatprop_rk4_history(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
 }
 fn peer_fusion(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
     // Fusion integrates the newest sample over the step (one sample per update).
-    s[1..].iter().fold(q0, |q, &w| peers::fusion_euler(q, w, dt))
+    s[1..]
+        .iter()
+        .fold(q0, |q, &w| peers::fusion_euler(q, w, dt))
 }
 fn peer_ahrs(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
     s[1..].iter().fold(q0, |q, &w| peers::ahrs_euler(q, w, dt))
 }
 fn peer_glam(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
-    s.windows(2).fold(q0, |q, w| peers::glam_trapezoid(q, w[0], w[1], dt))
+    s.windows(2)
+        .fold(q0, |q, w| peers::glam_trapezoid(q, w[0], w[1], dt))
 }
 fn peer_rk4(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
-    s.windows(2).fold(q0, |q, w| peers::rk4_renormalize(q, w[0], w[1], dt))
+    s.windows(2)
+        .fold(q0, |q, w| peers::rk4_renormalize(q, w[0], w[1], dt))
 }
 
 const CONFIGS: [(&str, bool, Runner); 9] = [
-    ("quatprop ExpMap linear + FirstOrder", true, quatprop_exp_linear),
-    ("quatprop Rk4 linear + FirstOrder", true, quatprop_rk4_linear),
-    ("quatprop ExpMap history + FirstOrder", true, quatprop_exp_history),
-    ("quatprop ExpMap history + FirstOrder, compensated", true, quatprop_exp_history_kahan),
-    ("quatprop Rk4 history + FirstOrder", true, quatprop_rk4_history),
+    (
+        "quatprop ExpMap linear + FirstOrder",
+        true,
+        quatprop_exp_linear,
+    ),
+    (
+        "quatprop Rk4 linear + FirstOrder",
+        true,
+        quatprop_rk4_linear,
+    ),
+    (
+        "quatprop ExpMap history + FirstOrder",
+        true,
+        quatprop_exp_history,
+    ),
+    (
+        "quatprop ExpMap history + FirstOrder, compensated",
+        true,
+        quatprop_exp_history_kahan,
+    ),
+    (
+        "quatprop Rk4 history + FirstOrder",
+        true,
+        quatprop_rk4_history,
+    ),
     ("peer: Fusion Euler + fast inverse sqrt", false, peer_fusion),
     ("peer: ahrs Euler + normalize", false, peer_ahrs),
-    ("peer: glam/PX4 trapezoid exp map + normalize", false, peer_glam),
+    (
+        "peer: glam/PX4 trapezoid exp map + normalize",
+        false,
+        peer_glam,
+    ),
     ("peer: nalgebra RK4 + renormalize", false, peer_rk4),
 ];
 
@@ -100,7 +132,11 @@ struct Point {
 pub fn work_precision(ctx: &mut Ctx, quick: bool) -> String {
     // Not a whole number of coning periods: over whole periods first-order errors cancel and flatter Euler.
     let horizon = if quick { 5.37 } else { 60.37 };
-    let rates: &[u32] = if quick { &[100, 1000] } else { &[100, 200, 500, 1000, 2000, 4000] };
+    let rates: &[u32] = if quick {
+        &[100, 1000]
+    } else {
+        &[100, 200, 500, 1000, 2000, 4000]
+    };
     let repeats = if quick { 1 } else { 5 };
     let mut points = Vec::new();
     let mut csv = String::from("config,rate_hz,steps,error_rad,ns_per_step\n");
@@ -108,8 +144,9 @@ pub fn work_precision(ctx: &mut Ctx, quick: bool) -> String {
         let steps = (horizon * hz as f64).round() as usize;
         let dt = 1.0 / hz as f64;
         // The same f32 samples for everyone: ω(t_k), k = 0..=steps.
-        let samples: Vec<Vec3<f32>> =
-            (0..=steps).map(|k| Vec3::<f32>::from_f64(coning_rate(k as f64 * dt))).collect();
+        let samples: Vec<Vec3<f32>> = (0..=steps)
+            .map(|k| Vec3::<f32>::from_f64(coning_rate(k as f64 * dt)))
+            .collect();
         let q0 = Quat::<f32>::from_f64(coning_attitude(0.0));
         let exact = coning_attitude(steps as f64 * dt);
         for (ci, (name, _, run)) in CONFIGS.iter().enumerate() {
@@ -124,9 +161,17 @@ pub fn work_precision(ctx: &mut Ctx, quick: bool) -> String {
             times.remove(0); // warm-up
             times.sort_by(|a, b| a.total_cmp(b));
             let ns = times[times.len() / 2];
-            let error = q.to_f64().normalized().map_or(f64::NAN, |u| u.angle_to(exact));
+            let error = q
+                .to_f64()
+                .normalized()
+                .map_or(f64::NAN, |u| u.angle_to(exact));
             let _ = writeln!(csv, "{name},{hz},{steps},{error},{ns}");
-            points.push(Point { config: ci, hz, error, ns_per_step: ns });
+            points.push(Point {
+                config: ci,
+                hz,
+                error,
+                ns_per_step: ns,
+            });
         }
     }
     ctx.csv("work_precision_coning_f32.csv", &csv);
@@ -147,7 +192,11 @@ pub fn work_precision(ctx: &mut Ctx, quick: bool) -> String {
         .map(|(ci, (name, _, _))| {
             Series::both(
                 *name,
-                points.iter().filter(|p| p.config == ci).map(|p| (p.ns_per_step, p.error)).collect(),
+                points
+                    .iter()
+                    .filter(|p| p.config == ci)
+                    .map(|p| (p.ns_per_step, p.error))
+                    .collect(),
             )
         })
         .collect();
@@ -157,8 +206,14 @@ pub fn work_precision(ctx: &mut Ctx, quick: bool) -> String {
             dir,
             "work_precision_coning_f32",
             "Coning, f32, one sample per step: error against host time per step",
-            Axis { label: "host time per step (ns, median)", log: true },
-            Axis { label: "attitude error after the horizon (rad)", log: true },
+            Axis {
+                label: "host time per step (ns, median)",
+                log: true,
+            },
+            Axis {
+                label: "attitude error after the horizon (rad)",
+                log: true,
+            },
             &series,
         )
     });
@@ -177,14 +232,18 @@ pub fn work_precision(ctx: &mut Ctx, quick: bool) -> String {
             p.ns_per_step * 1000.0 / 1000.0
         );
     }
-    let best_peer = at(1000).filter(|p| !CONFIGS[p.config].1).min_by(|a, b| a.error.total_cmp(&b.error));
+    let best_peer = at(1000)
+        .filter(|p| !CONFIGS[p.config].1)
+        .min_by(|a, b| a.error.total_cmp(&b.error));
     let headline = best_peer.and_then(|bp| {
         // quatprop's best configuration at no more host time per simulated second than the best peer
         // (any rate: a cheaper scheme may run at a higher rate for the same host time).
         let budget = bp.ns_per_step * bp.hz as f64;
         points
             .iter()
-            .filter(|p| CONFIGS[p.config].1 && p.ns_per_step * p.hz as f64 <= budget && p.hz == 1000)
+            .filter(|p| {
+                CONFIGS[p.config].1 && p.ns_per_step * p.hz as f64 <= budget && p.hz == 1000
+            })
             .min_by(|a, b| a.error.total_cmp(&b.error))
             .map(|q| (bp, q))
     });
