@@ -48,14 +48,24 @@ impl Scheme for ExpMap {
         stabilizer: &Z,
     ) -> Quat<T> {
         let em1 = Quat::exp_half_minus_one(rates.half_rotation_vector(h * T::HALF));
-        if stabilizer.has_rhs_term() {
-            // ρe − 1 = (ρ−1 + (cos−1) + (ρ−1)(cos−1), ρ · sin-part).
-            let rm1 = stabilizer.radial_flow_scale_minus_one(q, h);
-            let w = rm1 + em1.w + rm1 * em1.w;
-            let v = em1.vector() * (T::ONE + rm1);
-            q * Quat::from_parts(w, v)
-        } else {
-            q * em1
-        }
+        q * with_radial(em1, q, h, stabilizer)
+    }
+}
+
+/// A rotation increment `e − 1` with Baumgarte's exact radial factor ρ applied when the stabilizer has a
+/// right-hand-side term: `ρe − 1 = (ρ−1 + (e_w−1) + (ρ−1)(e_w−1), ρ·e_v)`, free of cancellation.
+/// Shared by the exponential-map family (ExpMap, Magnus4, Cf4).
+#[inline(always)]
+pub(crate) fn with_radial<T: Real, Z: Stabilizer<T>>(
+    em1: Quat<T>,
+    q: Quat<T>,
+    h: T,
+    z: &Z,
+) -> Quat<T> {
+    if z.has_rhs_term() {
+        let rm1 = z.radial_flow_scale_minus_one(q, h);
+        Quat::from_parts(rm1 + em1.w + rm1 * em1.w, em1.vector() * (T::ONE + rm1))
+    } else {
+        em1
     }
 }

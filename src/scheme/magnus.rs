@@ -4,21 +4,11 @@
 //! `step_gauss`, the quadratic interpolant for `step_mid` (still fourth order: the interpolation error is
 //! antisymmetric about the midpoint and cancels in the Gauss rule), the exact rate for `step_hold`.
 
+use super::exp_map::with_radial;
 use super::Scheme;
 use crate::rates::{magnus4_half, RateModel, GAUSS_1, GAUSS_2};
 use crate::stabilize::Stabilizer;
 use crate::{Quat, Real};
-
-/// Radial Baumgarte factor applied to a rotation increment `e − 1`: `ρe − 1`.
-#[inline(always)]
-fn with_radial<T: Real, Z: Stabilizer<T>>(em1: Quat<T>, q: Quat<T>, h: T, z: &Z) -> Quat<T> {
-    if z.has_rhs_term() {
-        let rm1 = z.radial_flow_scale_minus_one(q, h);
-        Quat::from_parts(rm1 + em1.w + rm1 * em1.w, em1.vector() * (T::ONE + rm1))
-    } else {
-        em1
-    }
-}
 
 /// Magnus-4: `q ← q ⊗ exp_q((h/2)(ω₁ + ω₂) + (√3 h²/12) ω₁ × ω₂)` with ω₁, ω₂ at the Gauss points
 /// (Iserles & Nørsett 1999; Blanes, Casas, Oteo, Ros, *Phys. Rep.* 470 (2009), eq. (4.10)).
