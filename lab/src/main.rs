@@ -6,6 +6,7 @@
 //! its figures).
 
 mod atlas;
+mod coning_drift;
 mod geiger;
 mod long_horizon;
 mod peers;
@@ -76,11 +77,12 @@ impl Ctx {
 
 fn usage() -> ! {
     eprintln!(
-        "usage: quatprop-lab <report|geiger|atlas|work-precision|long-horizon> [--quick|--long] [--out DIR]\n\
+        "usage: quatprop-lab <report|geiger|atlas|work-precision|coning-drift|long-horizon> [--quick|--long] [--out DIR]\n\
          report          all studies, README.md + plots (SVG, PNG) + CSV in DIR (default report/)\n\
          geiger          the seed paper's Fig. 1 and Fig. 2 (N(t) under RK4; N-infinity against k)\n\
          atlas           per-step norm factor and error against the step angle, measured stability bounds\n\
          work-precision  coning in f32: error against host time, quatprop against the peers\n\
+         coning-drift    coning drift coefficient of every rate scheme and input model\n\
          long-horizon    error growth to 1e8 steps (f32 every scheme, compensated f32, f64)\n\
          --quick         small grids and horizons (what CI runs); --long: 1e9 steps in long-horizon"
     );
@@ -147,10 +149,16 @@ fn main() {
             sections.push(run(&mut ctx, "work-precision", &|c| {
                 work_precision::work_precision(c, quick)
             }));
+            sections.push(run(&mut ctx, "coning drift", &|c| {
+                coning_drift::coning_drift(c, quick)
+            }));
             sections.push(run(&mut ctx, "long horizon", &|c| {
                 long_horizon::long_horizon(c, horizon)
             }));
         }
+        "coning-drift" => sections.push(run(&mut ctx, "coning drift", &|c| {
+            coning_drift::coning_drift(c, quick)
+        })),
         "geiger" => {
             sections.push(run(&mut ctx, "geiger fig 1", &geiger::figure1));
             sections.push(run(&mut ctx, "geiger fig 2", &|c| {
