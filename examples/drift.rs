@@ -104,7 +104,7 @@ pub fn exact_rotation(w: Vec3<f64>, t: f64) -> Quat<f64> {
     Quat::from_axis_angle(w, angle).unwrap_or(Quat::IDENTITY)
 }
 
-fn fmt_row(r: &DriftRow, total: u64) -> String {
+fn fmt_row(r: &DriftRow) -> String {
     if let Some(e) = r.stopped {
         let why = match e {
             Error::NonFiniteResult => "overflow".to_string(),
@@ -112,7 +112,6 @@ fn fmt_row(r: &DriftRow, total: u64) -> String {
         };
         return format!("diverged at step {} ({why}) | – | –", r.steps + 1);
     }
-    let _ = total;
     format!(
         "{:+.2e} | {:.2e} | {:.2e}",
         r.final_n, r.max_abs_n, r.attitude_error
@@ -161,8 +160,8 @@ fn main() {
                 "| {} | {} | {} | {} |",
                 m.name(),
                 label,
-                fmt_row(&r32, steps),
-                fmt_row(&r64, steps)
+                fmt_row(&r32),
+                fmt_row(&r64)
             );
         }
     }

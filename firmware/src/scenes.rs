@@ -4,7 +4,7 @@
 //! Everything here is plain f32 arithmetic plus quatprop; the coning rates come from a rotation recurrence,
 //! not from `sin`/`cos`, so no math library takes part in generating the inputs.
 
-use quatprop::scheme::{Method, Scheme};
+use quatprop::scheme::Method;
 use quatprop::stabilize::Policy;
 use quatprop::{Propagator, Quat, Vec3};
 
@@ -147,7 +147,6 @@ pub fn run(scene: Scene, method: Method, policy: Policy<f32>, steps: u32) -> Out
             refused += 1;
         }
     }
-    let _ = method.name();
     Outcome {
         q: p.attitude(),
         steps: p.steps(),

@@ -4,7 +4,7 @@ use crate::plot::{plot, Axis, Series};
 use crate::Ctx;
 use quatprop::rates::Hold;
 use quatprop::scheme::{Rk4, Scheme};
-use quatprop::stabilize::{Baumgarte, Normalize, Off, Stabilizer};
+use quatprop::stabilize::{Baumgarte, Normalize, Off};
 use quatprop::{Propagator, Quat, Vec3};
 use std::fmt::Write as _;
 
@@ -91,7 +91,6 @@ fn step_map(k: f64, h: f64, n: f64) -> f64 {
 /// N∞: the fixed point of the step map near 0 (Newton on F(N) − N with a numerical derivative), and whether
 /// it attracts (|F'(N∞)| < 1). `None` if no fixed point is found near 0.
 fn n_infinity(k: f64, h: f64) -> Option<(f64, bool)> {
-    let _ = Baumgarte { k }.validate();
     let mut n = 0.0;
     for _ in 0..60 {
         let f = step_map(k, h, n) - n;
