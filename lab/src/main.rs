@@ -11,6 +11,8 @@ mod geiger;
 mod long_horizon;
 mod peers;
 mod plot;
+mod scene_table;
+mod scenes;
 mod work_precision;
 
 use std::io::Write as _;
@@ -77,11 +79,12 @@ impl Ctx {
 
 fn usage() -> ! {
     eprintln!(
-        "usage: quatprop-lab <report|geiger|atlas|work-precision|coning-drift|long-horizon> [--quick|--long] [--out DIR]\n\
+        "usage: quatprop-lab <report|geiger|atlas|work-precision|scenes|coning-drift|long-horizon> [--quick|--long] [--out DIR]\n\
          report          all studies, README.md + plots (SVG, PNG) + CSV in DIR (default report/)\n\
          geiger          the seed paper's Fig. 1 and Fig. 2 (N(t) under RK4; N-infinity against k)\n\
          atlas           per-step norm factor and error against the step angle, measured stability bounds\n\
          work-precision  coning in f32: error against host time, quatprop against the peers\n\
+         scenes          every scene (coning, symmetric top, 2000 deg/s, rate step, Earth rate) x configuration\n\
          coning-drift    coning drift coefficient of every rate scheme and input model\n\
          long-horizon    error growth to 1e8 steps (f32 every scheme, compensated f32, f64)\n\
          --quick         small grids and horizons (what CI runs); --long: 1e9 steps in long-horizon"
@@ -149,6 +152,9 @@ fn main() {
             sections.push(run(&mut ctx, "work-precision", &|c| {
                 work_precision::work_precision(c, quick)
             }));
+            sections.push(run(&mut ctx, "scenes", &|c| {
+                scene_table::scene_table(c, quick)
+            }));
             sections.push(run(&mut ctx, "coning drift", &|c| {
                 coning_drift::coning_drift(c, quick)
             }));
@@ -156,6 +162,9 @@ fn main() {
                 long_horizon::long_horizon(c, horizon)
             }));
         }
+        "scenes" => sections.push(run(&mut ctx, "scenes", &|c| {
+            scene_table::scene_table(c, quick)
+        })),
         "coning-drift" => sections.push(run(&mut ctx, "coning drift", &|c| {
             coning_drift::coning_drift(c, quick)
         })),

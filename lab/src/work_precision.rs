@@ -28,7 +28,7 @@ fn coning_rate(t: f64) -> Vec3<f64> {
     )
 }
 
-type Runner = fn(&[Vec3<f32>], f32, Quat<f32>) -> Quat<f32>;
+pub type Runner = fn(&[Vec3<f32>], f32, Quat<f32>) -> Quat<f32>;
 
 fn quatprop_exp_linear(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
     let mut p = Propagator::new(q0, ExpMap, FirstOrder).unwrap();
@@ -86,7 +86,8 @@ fn peer_rk4(s: &[Vec3<f32>], dt: f32, q0: Quat<f32>) -> Quat<f32> {
         .fold(q0, |q, w| peers::rk4_renormalize(q, w[0], w[1], dt))
 }
 
-const CONFIGS: [(&str, bool, Runner); 9] = [
+/// The configurations compared: (label, is quatprop, runner).
+pub const CONFIGS: [(&str, bool, Runner); 9] = [
     (
         "quatprop ExpMap linear + FirstOrder",
         true,

@@ -1,0 +1,143 @@
+//! Scenes with exact references: attitude q(t) and body rate ω(t) in closed form.
+
+use quatprop::{Quat, Vec3};
+
+/// A motion with an exact attitude and body rate.
+pub trait Scene {
+    fn name(&self) -> &'static str;
+    fn attitude(&self, t: f64) -> Quat<f64>;
+    fn rate(&self, t: f64) -> Vec3<f64>;
+}
+
+fn exp_q(v: Vec3<f64>) -> Quat<f64> {
+    Quat::from_rotation_vector(v)
+}
+
+/// Coning α = 0.3 rad at 1 Hz.
+pub struct Coning;
+impl Scene for Coning {
+    fn name(&self) -> &'static str {
+        "coning 0.3 rad, 1 Hz"
+    }
+    fn attitude(&self, t: f64) -> Quat<f64> {
+        let (s, c) = (0.15f64).sin_cos();
+        let p = 2.0 * core::f64::consts::PI * t;
+        Quat::new(c, s * p.cos(), s * p.sin(), 0.0)
+    }
+    fn rate(&self, t: f64) -> Vec3<f64> {
+        let o = 2.0 * core::f64::consts::PI;
+        let p = o * t;
+        let s2 = (0.15f64).sin();
+        Vec3::new(
+            -o * 0.3f64.sin() * p.sin(),
+            o * 0.3f64.sin() * p.cos(),
+            -2.0 * o * s2 * s2,
+        )
+    }
+}
+
+/// `q(t) = exp_q(a t) ⊗ q0 ⊗ exp_q(b t)`: a inertial, b body (constant). Its body rate is
+/// `ω(t) = R(q0 ⊗ exp_q(b t))ᵀ a + b`. With a along the inertial z and b along the body z this is the
+/// torque-free symmetric top in regular precession.
+pub struct Sandwich {
+    pub name: &'static str,
+    pub a: Vec3<f64>,
+    pub b: Vec3<f64>,
+    pub q0: Quat<f64>,
+}
+impl Scene for Sandwich {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+    fn attitude(&self, t: f64) -> Quat<f64> {
+        exp_q(self.a * t) * self.q0 * exp_q(self.b * t)
+    }
+    fn rate(&self, t: f64) -> Vec3<f64> {
+        let r = self.q0 * exp_q(self.b * t);
+        r.conjugate().rotate(self.a) + self.b
+    }
+}
+
+/// Symmetric top: precession 0.7 rad/s about the inertial z, spin 3 rad/s about the body z, nutation 0.5 rad.
+pub fn symmetric_top() -> Sandwich {
+    Sandwich {
+        name: "symmetric top (regular precession)",
+        a: Vec3::new(0.0, 0.0, 0.7),
+        b: Vec3::new(0.0, 0.0, 3.0),
+        q0: Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.5).unwrap(),
+    }
+}
+
+/// 2000 °/s about the body x axis while the body cones: a fast roll with coning (the Betaflight case).
+pub fn fast_spin() -> Sandwich {
+    Sandwich {
+        name: "2000 deg/s roll with coning",
+        a: Vec3::new(0.0, 0.0, 2.0),
+        b: Vec3::new(2000f64.to_radians(), 0.0, 0.0),
+        q0: Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.3).unwrap(),
+    }
+}
+
+/// A rate step: at rest, then 5 rad/s about a fixed body axis from t = 0.5037 s (inside a step).
+pub struct RateStep;
+const STEP_AT: f64 = 0.5037;
+impl Scene for RateStep {
+    fn name(&self) -> &'static str {
+        "rate step 0 to 5 rad/s"
+    }
+    fn attitude(&self, t: f64) -> Quat<f64> {
+        let w = Vec3::new(0.36, -0.48, 0.8) * 5.0;
+        exp_q(w * (t - STEP_AT).max(0.0))
+    }
+    fn rate(&self, t: f64) -> Vec3<f64> {
+        if t < STEP_AT {
+            Vec3::ZERO
+        } else {
+            Vec3::new(0.36, -0.48, 0.8) * 5.0
+        }
+    }
+}
+
+/// Idle with Earth rate only (7.29e-5 rad/s about a tilted axis): nothing may be dropped.
+pub struct EarthRate;
+impl Scene for EarthRate {
+    fn name(&self) -> &'static str {
+        "idle, Earth rate only"
+    }
+    fn attitude(&self, t: f64) -> Quat<f64> {
+        exp_q(Vec3::new(0.0, 0.6, 0.8) * (7.292_115e-5 * t))
+    }
+    fn rate(&self, _t: f64) -> Vec3<f64> {
+        Vec3::new(0.0, 0.6, 0.8) * 7.292_115e-5
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every scene's rate is its attitude's body rate: ω = 2 q* ⊗ q' (central differences).
+    #[test]
+    fn rates_are_the_attitudes_body_rates() {
+        let scenes: Vec<Box<dyn Scene>> = vec![
+            Box::new(Coning),
+            Box::new(symmetric_top()),
+            Box::new(fast_spin()),
+            Box::new(EarthRate),
+        ];
+        for s in &scenes {
+            for &t in &[0.1, 0.77, 3.3] {
+                let d = 1e-6;
+                let dq = (s.attitude(t + d) - s.attitude(t - d)) * (0.5 / d);
+                let w = s.attitude(t).conjugate() * dq * 2.0;
+                let r = s.rate(t);
+                let err = (w.vector() - r).norm() / r.norm().max(1e-9);
+                assert!(
+                    err < 1e-6 && w.w.abs() < 1e-6 * r.norm().max(1.0),
+                    "{}: {err:e}",
+                    s.name()
+                );
+            }
+        }
+    }
+}
