@@ -11,6 +11,7 @@ mod geiger;
 mod long_horizon;
 mod peers;
 mod plot;
+mod rigid_body;
 mod scene_table;
 mod scenes;
 mod work_precision;

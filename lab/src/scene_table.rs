@@ -1,6 +1,7 @@
 //! Every scene, every configuration of the work-precision study, f32, one gyro sample per step at 1 kHz:
 //! attitude error after the horizon against the exact motion.
 
+use crate::rigid_body::RigidBody;
 use crate::scenes::{fast_spin, symmetric_top, Coning, EarthRate, RateStep, Scene};
 use crate::work_precision::CONFIGS;
 use crate::Ctx;
@@ -13,6 +14,7 @@ pub fn scene_table(ctx: &mut Ctx, quick: bool) -> String {
     let scenes: Vec<Box<dyn Scene>> = vec![
         Box::new(Coning),
         Box::new(symmetric_top()),
+        Box::new(RigidBody::asymmetric(horizon + 1.0)),
         Box::new(fast_spin()),
         Box::new(RateStep),
         Box::new(EarthRate),
