@@ -6,6 +6,7 @@
 //! its figures).
 
 mod atlas;
+mod configs;
 mod coning_drift;
 mod geiger;
 mod long_horizon;

@@ -48,19 +48,22 @@ pub fn ellipj(u: f64, m: f64) -> (f64, f64, f64) {
         n += 1;
     }
     let mut phi = (1u64 << n) as f64 * a[n] * u;
-    let mut prev = phi;
     for k in (1..=n).rev() {
-        prev = phi;
         phi = 0.5 * (phi + (c[k] / a[k] * phi.sin()).asin());
     }
     let (s, co) = phi.sin_cos();
-    (s, co, co / (prev - phi).cos())
+    // dn² = 1 − m sn² = (1 − m) + m cn²: a sum of positive terms. (A&S's cos φ₀ / cos(φ₁ − φ₀) is 0/0 at
+    // u = K, where the Dzhanibekov scene starts; it gave a 0.57 Euler-equation residual there.)
+    (s, co, ((1.0 - m) + m * co * co).sqrt())
 }
 
 /// Torque-free body with principal moments I1 < I2 < I3, energy T and momentum |L| (L² > 2 T I2: rotation
 /// about the axis of largest inertia, the nutating motion of the seed's example).
 pub struct RigidBody {
+    pub key: &'static str,
     pub name: &'static str,
+    /// Scene time 0 is body time `t0` (the Dzhanibekov scene starts in the quiet phase, not mid-flip).
+    t0: f64,
     i: [f64; 3],
     amp: [f64; 3],
     nu: f64,
@@ -75,15 +78,67 @@ impl RigidBody {
     /// The seed-like gyroscope: I = (1, 2, 3), ω(0) = (0.5, 0, 1.2)·… chosen with L² > 2T·I2.
     pub fn asymmetric(horizon: f64) -> Self {
         Self::new(
+            "asymmetric",
             "asymmetric gyroscope (the seed's case)",
             [1.0, 2.0, 3.0],
             [1.0, 0.0, 1.5],
+            0.0,
             horizon,
         )
     }
 
-    /// Constructs the motion with ω(0) = w0 (ω2(0) must be 0, ω1(0), ω3(0) > 0).
-    fn new(name: &'static str, i: [f64; 3], w0: [f64; 3], horizon: f64) -> Self {
+    /// The intermediate-axis (Dzhanibekov) flip: I = (1, 2, 3) next to the separatrix (L² − 2T·I2 = 1e-4,
+    /// 1.6e-6 of L²; parameter m = 1 − 6.25e-6), starting in the quiet phase (spin about the intermediate axis,
+    /// |ω| ≈ 4 rad/s) a quarter period (K(m)/ν = 3.19 s) before the first flip. The body flips every
+    /// 2K(m)/ν = 6.39 s: the spin axis turns over in about a second, with ω2 reversing sign.
+    pub fn dzhanibekov(horizon: f64) -> Self {
+        let w1 = 4.0f64;
+        // I3(I3 − I2) w3² − I1(I2 − I1) w1² = δ: just on the I3 side of the separatrix.
+        let w3 = ((w1 * w1 + 1e-4) / 3.0).sqrt();
+        let name = "intermediate-axis (Dzhanibekov) flip";
+        let probe = Self::new(
+            "dzhanibekov",
+            name,
+            [1.0, 2.0, 3.0],
+            [w1, 0.0, w3],
+            0.0,
+            0.0,
+        );
+        let quarter = probe.quarter_period();
+        Self::new(
+            "dzhanibekov",
+            name,
+            [1.0, 2.0, 3.0],
+            [w1, 0.0, w3],
+            quarter,
+            horizon,
+        )
+    }
+
+    /// Parameter m of the Jacobi functions (1 on the separatrix).
+    pub fn parameter(&self) -> f64 {
+        self.m
+    }
+
+    /// K(m)/ν: a quarter of the period of ω (s), K by the AGM: K = π / (2 AGM(1, √(1 − m))).
+    pub fn quarter_period(&self) -> f64 {
+        let (mut a, mut g) = (1.0f64, (1.0 - self.m).sqrt());
+        while (a - g).abs() > 1e-16 * a {
+            (a, g) = (0.5 * (a + g), (a * g).sqrt());
+        }
+        core::f64::consts::PI / (2.0 * a) / self.nu
+    }
+
+    /// Constructs the motion with ω(0) = w0 at body time 0 (ω2(0) must be 0, ω1(0), ω3(0) > 0), seen from
+    /// body time `t0` on, the reference tabulated to scene time `horizon`.
+    fn new(
+        key: &'static str,
+        name: &'static str,
+        i: [f64; 3],
+        w0: [f64; 3],
+        t0: f64,
+        horizon: f64,
+    ) -> Self {
         let [i1, i2, i3] = i;
         let t2 = i1 * w0[0] * w0[0] + i2 * w0[1] * w0[1] + i3 * w0[2] * w0[2]; // 2T
         let l2 = (i1 * w0[0]).powi(2) + (i2 * w0[1]).powi(2) + (i3 * w0[2]).powi(2);
@@ -93,7 +148,9 @@ impl RigidBody {
         let nu = ((i3 - i2) * (l2 - t2 * i1) / (i1 * i2 * i3)).sqrt();
         let m = (i2 - i1) * (t2 * i3 - l2) / ((i3 - i2) * (l2 - t2 * i1));
         let mut body = Self {
+            key,
             name,
+            t0,
             i,
             amp: [a1, a2, a3],
             nu,
@@ -103,7 +160,7 @@ impl RigidBody {
             phi_table: Vec::new(),
         };
         // φ(t) on a grid: 5-point Gauss–Legendre per cell (error far below f64 rounding for smooth φ').
-        let cells = (horizon / body.phi_step).ceil() as usize + 2;
+        let cells = ((t0 + horizon) / body.phi_step).ceil() as usize + 2;
         let mut acc = 0.0;
         body.phi_table.push(0.0);
         for k in 0..cells {
@@ -152,16 +209,20 @@ impl RigidBody {
 }
 
 impl Scene for RigidBody {
+    fn key(&self) -> &'static str {
+        self.key
+    }
     fn name(&self) -> &'static str {
         self.name
     }
     fn rate(&self, t: f64) -> Vec3<f64> {
-        let w = self.omega(t);
+        let w = self.omega(self.t0 + t);
         Vec3::new(w[0], w[1], w[2])
     }
     /// R = Rz(φ) Rx(θ) Rz(ψ) (body to inertial, inertial z along L): cos θ = I3 ω3/|L|,
     /// ψ = atan2(I1 ω1, I2 ω2).
     fn attitude(&self, t: f64) -> Quat<f64> {
+        let t = self.t0 + t;
         let [w1, w2, w3] = self.omega(t);
         let [i1, i2, i3] = self.i;
         let theta = (i3 * w3 / self.l).clamp(-1.0, 1.0).acos();
@@ -231,6 +292,66 @@ mod tests {
                 "t={t}: {omega:?} vs {r:?}"
             );
         }
+    }
+
+    #[test]
+    fn dzhanibekov_reference_flips_and_is_validated() {
+        let horizon = 13.0;
+        let b = RigidBody::dzhanibekov(horizon);
+        let m = b.parameter();
+        let quarter = b.quarter_period();
+        println!(
+            "Dzhanibekov: m = 1 - {:.3e}, quarter period {quarter:.4} s",
+            1.0 - m
+        );
+        assert!(1.0 - m > 1e-7 && 1.0 - m < 1e-5, "m = {m}");
+        // Quiet phase at scene time 0: nearly all the rate on the intermediate axis.
+        let w = b.rate(0.0);
+        assert!(w.y.abs() > 0.999 * w.norm(), "{w:?}");
+        // Flips (ω2 changes sign) at scene times K/ν (3K/ν, …) and nowhere else.
+        let mut flips = Vec::new();
+        let mut prev = b.rate(0.0).y;
+        for k in 1..=13_000 {
+            let t = k as f64 * 1e-3;
+            let y = b.rate(t).y;
+            if y.signum() != prev.signum() {
+                flips.push(t);
+            }
+            prev = y;
+        }
+        assert_eq!(flips.len(), 2, "{flips:?}");
+        assert!((flips[0] - quarter).abs() < 2e-3 && (flips[1] - 3.0 * quarter).abs() < 2e-3);
+        // Euler's equations and 2 q* q' = (0, ω), across a flip.
+        let [i1, i2, i3] = b.i;
+        for &t in &[0.0, quarter - 0.3, quarter, quarter + 0.2, 11.5] {
+            let h = 1e-6;
+            let (w, wp, wm) = (b.rate(t), b.rate(t + h), b.rate(t - h));
+            let dw = (wp - wm) * (0.5 / h);
+            let res = [
+                i1 * dw.x - (i2 - i3) * w.y * w.z,
+                i2 * dw.y - (i3 - i1) * w.z * w.x,
+                i3 * dw.z - (i1 - i2) * w.x * w.y,
+            ];
+            assert!(res.iter().all(|r| r.abs() < 1e-6), "t={t}: {res:?}");
+            let dq = (b.attitude(t + h) - b.attitude(t - h)) * (0.5 / h);
+            let omega = b.attitude(t).conjugate() * dq * 2.0;
+            assert!((omega.vector() - w).norm() < 1e-6, "t={t}");
+        }
+        // Against a tight Magnus-4 propagation through the first flip.
+        use quatprop::rates::{GAUSS_1, GAUSS_2};
+        use quatprop::scheme::Magnus4;
+        use quatprop::stabilize::Normalize;
+        let h = 1e-4;
+        let mut p = quatprop::Propagator::new(b.attitude(0.0), Magnus4, Normalize).unwrap();
+        let n = 80_000;
+        for k in 0..n {
+            let t = k as f64 * h;
+            p.step_gauss(b.rate(t + GAUSS_1 * h), b.rate(t + GAUSS_2 * h), h)
+                .unwrap();
+        }
+        let e = p.attitude().angle_to(b.attitude(n as f64 * h));
+        println!("Dzhanibekov reference vs Magnus-4 at h = 1e-4 over 8 s: {e:.2e} rad");
+        assert!(e < 1e-9, "reference vs Magnus-4 through the flip: {e:e}");
     }
 
     #[test]

@@ -4,9 +4,22 @@ use quatprop::{Quat, Vec3};
 
 /// A motion with an exact attitude and body rate.
 pub trait Scene {
+    /// Short name for the command line (`--scene`).
+    fn key(&self) -> &'static str;
     fn name(&self) -> &'static str;
     fn attitude(&self, t: f64) -> Quat<f64>;
     fn rate(&self, t: f64) -> Vec3<f64>;
+    /// What the scene needs in a work-precision sweep: horizon (s) and gyro sample rates (Hz).
+    fn sweep(&self) -> Sweep {
+        DEFAULT_SWEEP
+    }
+}
+
+/// A scene's work-precision sweep: horizon (s) and gyro sample rates (Hz).
+#[derive(Clone, Copy, Debug)]
+pub struct Sweep {
+    pub horizon: f64,
+    pub rates: &'static [u32],
 }
 
 fn exp_q(v: Vec3<f64>) -> Quat<f64> {
@@ -16,6 +29,9 @@ fn exp_q(v: Vec3<f64>) -> Quat<f64> {
 /// Coning α = 0.3 rad at 1 Hz.
 pub struct Coning;
 impl Scene for Coning {
+    fn key(&self) -> &'static str {
+        "coning"
+    }
     fn name(&self) -> &'static str {
         "coning 0.3 rad, 1 Hz"
     }
@@ -40,14 +56,22 @@ impl Scene for Coning {
 /// `ω(t) = R(q0 ⊗ exp_q(b t))ᵀ a + b`. With a along the inertial z and b along the body z this is the
 /// torque-free symmetric top in regular precession.
 pub struct Sandwich {
+    pub key: &'static str,
     pub name: &'static str,
+    pub sweep: Sweep,
     pub a: Vec3<f64>,
     pub b: Vec3<f64>,
     pub q0: Quat<f64>,
 }
 impl Scene for Sandwich {
+    fn key(&self) -> &'static str {
+        self.key
+    }
     fn name(&self) -> &'static str {
         self.name
+    }
+    fn sweep(&self) -> Sweep {
+        self.sweep
     }
     fn attitude(&self, t: f64) -> Quat<f64> {
         exp_q(self.a * t) * self.q0 * exp_q(self.b * t)
@@ -61,7 +85,9 @@ impl Scene for Sandwich {
 /// Symmetric top: precession 0.7 rad/s about the inertial z, spin 3 rad/s about the body z, nutation 0.5 rad.
 pub fn symmetric_top() -> Sandwich {
     Sandwich {
+        key: "top",
         name: "symmetric top (regular precession)",
+        sweep: DEFAULT_SWEEP,
         a: Vec3::new(0.0, 0.0, 0.7),
         b: Vec3::new(0.0, 0.0, 3.0),
         q0: Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.5).unwrap(),
@@ -71,17 +97,70 @@ pub fn symmetric_top() -> Sandwich {
 /// 2000 °/s about the body x axis while the body cones: a fast roll with coning (the Betaflight case).
 pub fn fast_spin() -> Sandwich {
     Sandwich {
+        key: "spin2000",
         name: "2000 deg/s roll with coning",
+        sweep: Sweep {
+            horizon: 5.37,
+            rates: &[500, 1000, 2000, 4000, 8000, 16000],
+        },
         a: Vec3::new(0.0, 0.0, 2.0),
         b: Vec3::new(2000f64.to_radians(), 0.0, 0.0),
         q0: Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.3).unwrap(),
     }
 }
 
+/// 10⁴ rad/s about the body x axis (a spin-stabilized projectile or a flywheel), precessing at 1 rad/s:
+/// H|ω| from 5 at 2 kHz to 0.1 at 100 kHz, through every Runge–Kutta stability bound.
+pub fn spin_1e4() -> Sandwich {
+    Sandwich {
+        key: "spin1e4",
+        name: "1e4 rad/s spin, precessing",
+        sweep: Sweep {
+            horizon: 0.2037,
+            rates: &[2000, 5000, 10_000, 20_000, 50_000, 100_000],
+        },
+        a: Vec3::new(0.0, 0.0, 1.0),
+        b: Vec3::new(1.0e4, 0.0, 0.0),
+        q0: Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.3).unwrap(),
+    }
+}
+
+/// `inner` seen from `t0` on: `attitude(t) = inner.attitude(t0 + t)`.
+pub struct Shifted<S> {
+    pub inner: S,
+    pub t0: f64,
+}
+impl<S: Scene> Scene for Shifted<S> {
+    fn key(&self) -> &'static str {
+        self.inner.key()
+    }
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+    fn attitude(&self, t: f64) -> Quat<f64> {
+        self.inner.attitude(self.t0 + t)
+    }
+    fn rate(&self, t: f64) -> Vec3<f64> {
+        self.inner.rate(self.t0 + t)
+    }
+    fn sweep(&self) -> Sweep {
+        self.inner.sweep()
+    }
+}
+
+/// The default sweep: 20.37 s (not a whole number of any scene's periods) at 100 Hz to 4 kHz.
+pub const DEFAULT_SWEEP: Sweep = Sweep {
+    horizon: 20.37,
+    rates: &[100, 200, 500, 1000, 2000, 4000],
+};
+
 /// A rate step: at rest, then 5 rad/s about a fixed body axis from t = 0.5037 s (inside a step).
 pub struct RateStep;
 const STEP_AT: f64 = 0.5037;
 impl Scene for RateStep {
+    fn key(&self) -> &'static str {
+        "step"
+    }
     fn name(&self) -> &'static str {
         "rate step 0 to 5 rad/s"
     }
@@ -101,6 +180,9 @@ impl Scene for RateStep {
 /// Idle with Earth rate only (7.29e-5 rad/s about a tilted axis): nothing may be dropped.
 pub struct EarthRate;
 impl Scene for EarthRate {
+    fn key(&self) -> &'static str {
+        "earth"
+    }
     fn name(&self) -> &'static str {
         "idle, Earth rate only"
     }
@@ -110,6 +192,21 @@ impl Scene for EarthRate {
     fn rate(&self, _t: f64) -> Vec3<f64> {
         Vec3::new(0.0, 0.6, 0.8) * 7.292_115e-5
     }
+}
+
+/// Every scene of the lab, the rigid bodies' references tabulated up to `horizon` (s).
+pub fn catalogue(horizon: f64) -> Vec<Box<dyn Scene>> {
+    use crate::rigid_body::RigidBody;
+    vec![
+        Box::new(Coning),
+        Box::new(symmetric_top()),
+        Box::new(RigidBody::asymmetric(horizon)),
+        Box::new(RigidBody::dzhanibekov(horizon)),
+        Box::new(fast_spin()),
+        Box::new(spin_1e4()),
+        Box::new(RateStep),
+        Box::new(EarthRate),
+    ]
 }
 
 #[cfg(test)]
@@ -123,6 +220,7 @@ mod tests {
             Box::new(Coning),
             Box::new(symmetric_top()),
             Box::new(fast_spin()),
+            Box::new(spin_1e4()),
             Box::new(EarthRate),
         ];
         for s in &scenes {
