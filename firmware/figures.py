@@ -12,6 +12,7 @@ What it does:
 3. estimates Cortex-M4 cycles per step: measured instructions x the average cycles per instruction of the
    static instruction mix of that configuration's loop in the disassembly, with the Cortex-M4 timings of the
    ARM Cortex-M4 TRM (r0p1, tables 3-1 and 7-1). An estimate, labelled so: QEMU counts instructions, not cycles;
+   The counts also go to firmware/bench-m4f.csv (read by the lab's work-precision study);
 4. builds `minimal` once per scheme (one scheme + FirstOrder, no defmt) and the smoke/isr/bench images and
    reports .text/.rodata/.data/.bss from llvm-size.
 """
@@ -254,8 +255,20 @@ def size_table():
     return rows
 
 
+def write_bench_csv(bench):
+    """firmware/bench-m4f.csv: the bench counts for the lab's work-precision overlay (committed)."""
+    with open(os.path.join(ROOT, "firmware", "bench-m4f.csv"), "w") as f:
+        f.write("precision,scheme,stabilizer,input,instructions_per_step\n")
+        for key, v in sorted(bench.items()):
+            if key[0] == "kahan":
+                f.write(f"f32-kahan,{key[1]},{key[2]},{key[3]},{v}\n")
+            else:
+                f.write(f"{key[0]},{key[1]},{key[2]},{key[3]},{v}\n")
+
+
 def main():
     bench = run_bench()
+    write_bench_csv(bench)
     cpi = static_cpi()
     schemes = ["Euler", "Rk2", "Rk3", "Rk4", "Rk5", "ExpMap", "Magnus4", "Cf4"]
     flop_schemes = schemes[:6]  # the cost model covers the RK tableaux and the exponential map

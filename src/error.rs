@@ -21,8 +21,9 @@ pub enum Error {
         /// The scheme's bound (rad).
         limit: f64,
     },
-    /// Baumgarte's `4 k dt` exceeds the scheme's stability interval on the negative real axis, where the
-    /// stabilizing term itself makes the step diverge (see [`crate::scheme::Scheme::real_axis_limit`]).
+    /// Baumgarte's `4 k dt` exceeds the scheme's bound ([`crate::scheme::Scheme::gain_step_limit`], half its
+    /// stability interval on the negative real axis), beyond which the stabilizing term itself can make the
+    /// propagation oscillate or diverge.
     GainBeyondStability {
         /// `4 k dt` of the refused step.
         gain_step: f64,

@@ -230,7 +230,7 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z
     /// - [`Error::NonFiniteStep`] / [`Error::NonPositiveStep`]: `dt` is NaN, ±∞, zero or negative.
     /// - [`Error::NonFiniteRate`]: a rate component is NaN or ±∞.
     /// - [`Error::StepAngleBeyondStability`]: `dt · max|ω|` exceeds [`Scheme::step_angle_limit`].
-    /// - [`Error::GainBeyondStability`]: Baumgarte's `4k·dt` exceeds [`Scheme::real_axis_limit`].
+    /// - [`Error::GainBeyondStability`]: Baumgarte's `4k·dt` exceeds [`Scheme::gain_step_limit`].
     /// - [`Error::NonFiniteResult`]: the arithmetic overflowed.
     ///
     /// In every case the state is unchanged.
@@ -260,7 +260,7 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Propagator<T, S, Z
         }
         if self.stabilizer.has_rhs_term() {
             let gain_step = self.stabilizer.norm_stiffness() * dt;
-            let limit = self.scheme.real_axis_limit();
+            let limit = self.scheme.gain_step_limit();
             if !(gain_step <= T::from_f64(limit)) {
                 return Err(Error::GainBeyondStability {
                     gain_step: gain_step.to_f64(),

@@ -198,19 +198,26 @@ fn bad_initial_quaternions_and_stabilizers_are_refused() {
 
 #[test]
 fn baumgarte_gain_beyond_the_real_axis_bound_is_refused() {
-    // RK4's real-axis interval ends at 2.785: 4·k·dt = 4 · 100 · 0.01 = 4 is beyond it.
+    // RK4's real-axis interval ends at 2.785, the accepted gain step at half of it: 4·k·dt = 4 · 100 · 0.01
+    // = 4 is beyond it, and so is 4 · 100 · 0.004 = 1.6 (inside the interval, but Rk5 escapes at 0.82 of
+    // its own interval: the lab's Baumgarte sweep).
     let mut p = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Baumgarte { k: 100.0 }).unwrap();
     let before = p;
     match p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.01) {
         Err(Error::GainBeyondStability { gain_step, limit }) => {
             assert!((gain_step - 4.0).abs() < 1e-12);
-            assert!((limit - 2.785).abs() < 1e-3, "{limit}");
+            assert!((limit - 2.785 / 2.0).abs() < 1e-3, "{limit}");
         }
         other => panic!("{other:?}"),
     }
     assert_eq!(p, before);
-    // Inside the bound it steps.
-    p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.005).unwrap();
+    assert!(matches!(
+        p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.004),
+        Err(Error::GainBeyondStability { .. })
+    ));
+    assert_eq!(p, before);
+    // Inside the bound it steps: 4 · 100 · 0.003 = 1.2.
+    p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.003).unwrap();
 }
 
 #[test]

@@ -122,7 +122,7 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
          Permanent rotation |ω| = 1 rad/s under RK4. N∞ is the fixed point of the per-step map N → F(N) (the seed's \
          eq. (9), evaluated with the library's unchecked step), found by Newton iteration; it is marked divergent \
          where |F'(N∞)| ≥ 1. The optimal gains are the zeros of N∞(k), located by bisection on sign changes.\n\n\
-         | H|ω| | optimal k₁ | optimal k₂ | iteration diverges for k above | library refuses 4kH > 2.785 above k = |\n|---|---|---|---|---|\n",
+         | H|ω| | optimal k₁ | optimal k₂ | iteration diverges for k above | library refuses 4kH > 1.393 (half RK4's real-axis interval) above k = |\n|---|---|---|---|---|\n",
     );
     let mut series = Vec::new();
     let mut csv = String::from("h_omega,k,n_inf,attracting\n");
@@ -164,7 +164,7 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
             fmt(roots.first()),
             fmt(roots.get(1)),
             diverge_at.map_or("–".to_string(), |k| format!("{k:.3}")),
-            2.785_294 / (4.0 * hw)
+            Rk4.gain_step_limit() / (4.0 * hw)
         );
         series.push(Series::line(format!("H|w| = {hw:.3}"), pts));
     }

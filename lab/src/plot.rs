@@ -180,6 +180,8 @@ pub fn plot(
     );
     for (i, se) in series.iter().enumerate() {
         let c = COLORS[i % COLORS.len()];
+        // Past the palette: the same colours again, dashed with square markers.
+        let second_round = i >= COLORS.len();
         let p: Vec<(f64, f64)> = se
             .points
             .iter()
@@ -187,7 +189,7 @@ pub fn plot(
             .collect();
         if se.line && p.len() > 1 {
             let d: Vec<String> = p.iter().map(|(a, b)| format!("{a:.1},{b:.1}")).collect();
-            let dash = if se.dashed {
+            let dash = if se.dashed || second_round {
                 r#" stroke-dasharray="6 4""#
             } else {
                 ""
@@ -200,7 +202,16 @@ pub fn plot(
         }
         if se.marker {
             for (a, b) in &p {
-                let _ = writeln!(s, r#"<circle cx="{a:.1}" cy="{b:.1}" r="3.2" fill="{c}"/>"#);
+                if second_round {
+                    let _ = writeln!(
+                        s,
+                        r#"<rect x="{:.1}" y="{:.1}" width="6.4" height="6.4" fill="{c}"/>"#,
+                        a - 3.2,
+                        b - 3.2
+                    );
+                } else {
+                    let _ = writeln!(s, r#"<circle cx="{a:.1}" cy="{b:.1}" r="3.2" fill="{c}"/>"#);
+                }
             }
         }
         let ly = t + 10.0 + 18.0 * i as f64;

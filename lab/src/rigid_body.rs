@@ -116,6 +116,7 @@ impl RigidBody {
     }
 
     /// Parameter m of the Jacobi functions (1 on the separatrix).
+    #[cfg(test)]
     pub fn parameter(&self) -> f64 {
         self.m
     }

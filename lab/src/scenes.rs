@@ -125,29 +125,6 @@ pub fn spin_1e4() -> Sandwich {
     }
 }
 
-/// `inner` seen from `t0` on: `attitude(t) = inner.attitude(t0 + t)`.
-pub struct Shifted<S> {
-    pub inner: S,
-    pub t0: f64,
-}
-impl<S: Scene> Scene for Shifted<S> {
-    fn key(&self) -> &'static str {
-        self.inner.key()
-    }
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-    fn attitude(&self, t: f64) -> Quat<f64> {
-        self.inner.attitude(self.t0 + t)
-    }
-    fn rate(&self, t: f64) -> Vec3<f64> {
-        self.inner.rate(self.t0 + t)
-    }
-    fn sweep(&self) -> Sweep {
-        self.inner.sweep()
-    }
-}
-
 /// The default sweep: 20.37 s (not a whole number of any scene's periods) at 100 Hz to 4 kHz.
 pub const DEFAULT_SWEEP: Sweep = Sweep {
     horizon: 20.37,

@@ -44,8 +44,21 @@ pub trait Scheme: Copy {
     /// [`tableau::step_angle_limit`]. Infinite for the exponential map.
     fn step_angle_limit(&self) -> f64;
 
-    /// End of the stability interval on the negative real axis; Baumgarte's `4kh` must stay below it.
+    /// End of the stability interval on the negative real axis (`h·λ`, `|R(−hλ)| ≤ 1` up to it).
     fn real_axis_limit(&self) -> f64;
+
+    /// Largest Baumgarte `4k·h` the propagator accepts: half of [`Scheme::real_axis_limit`].
+    ///
+    /// The linear bound alone is not enough. The Baumgarte term is nonlinear (`−4kN(1 + N)`), the norm
+    /// settles on the seed's `N∞ ≠ 0`, and the one-step map loses its fixed point before `4kh` reaches the
+    /// real-axis limit for some schemes: in propagation (lab `baumgarte_sweep`, |ω| = 1 rad/s, H|ω| from 0.1 to
+    /// 2) Rk5 escapes at 0.82–0.96 of the real-axis limit and stops settling at 0.66–0.82 of it; every scheme
+    /// settles below half of it. Gains that large correct most of the norm error in one step anyway (the
+    /// seed's optimal gains are `4kh` ≈ 0.002–0.05).
+    #[inline(always)]
+    fn gain_step_limit(&self) -> f64 {
+        0.5 * self.real_axis_limit()
+    }
 
     /// `|R(ix)|² − 1` at `x = h|ω|/2`: the per-step relative change of `|q|²` for a held rate with step angle
     /// `h|ω|` (rad) and no stabilization, evaluated from its own polynomial in `x²` (no cancellation).

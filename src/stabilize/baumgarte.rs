@@ -11,8 +11,8 @@ use crate::{Error, Quat, Real};
 /// k, H and |ω|; only two tuned values of k give `N∞ ≈ 0`. Under [`crate::scheme::ExpMap`] the radial term
 /// commutes with the rotation and is integrated exactly, so `N` decays as eq. (8) says.
 ///
-/// A step needs `4kh` inside the scheme's real-axis stability interval
-/// ([`crate::scheme::Scheme::real_axis_limit`]); beyond it the propagator refuses the step.
+/// A step needs `4kh` within [`crate::scheme::Scheme::gain_step_limit`] (half the scheme's real-axis
+/// stability interval); beyond it the propagator refuses the step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Baumgarte<T> {
