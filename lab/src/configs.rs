@@ -251,72 +251,69 @@ struct QuatpropRun<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> {
     first_error: Option<Error>,
 }
 
-impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> QuatpropRun<T, S, Z, A> {
-    #[inline(always)]
-    fn note(&mut self, r: Result<(), Error>) {
-        if let Err(e) = r {
-            self.refused += 1;
-            self.first_error.get_or_insert(e);
-        }
-    }
-}
-
 impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Integrator<T>
     for QuatpropRun<T, S, Z, A>
 {
     fn feed(&mut self, samples: &[Sample<T>]) {
-        // One loop per input model, so the step loop itself has no dispatch.
+        // One loop per input model, so the step loop itself has no dispatch; the state lives in locals
+        // during the loop (as it would in a firmware's interrupt handler) and is written back once.
+        let (mut p, mut prev, mut history) = (self.p, self.prev, self.history);
+        let (mut refused, mut first) = (0u64, None);
+        // Cold: only refused steps reach the body.
+        let mut note = |r: Result<(), Error>| {
+            if let Err(e) = r {
+                refuse(&mut refused, &mut first, e);
+            }
+        };
         match self.input {
             Input::Hold => {
                 for s in samples {
-                    if self.prev.is_some() {
-                        let r = self.p.step_hold(s.w, s.dt);
-                        self.note(r);
+                    if prev.is_some() {
+                        note(p.step_hold(s.w, s.dt));
                     }
-                    self.prev = Some(s.w);
+                    prev = Some(s.w);
                 }
             }
             Input::Linear => {
                 for s in samples {
-                    if let Some(w0) = self.prev {
-                        let r = self.p.step_linear(w0, s.w, s.dt);
-                        self.note(r);
+                    if let Some(w0) = prev {
+                        note(p.step_linear(w0, s.w, s.dt));
                     }
-                    self.prev = Some(s.w);
+                    prev = Some(s.w);
                 }
             }
             Input::History => {
                 for s in samples {
-                    match self.prev {
+                    match prev {
                         Some(w0) if s.dt > self.gap => {
                             // A gap: bridge it linearly, restart the history at this sample.
-                            let r = self.p.step_linear(w0, s.w, s.dt);
-                            self.note(r);
-                            self.history.clear();
-                            self.history.push(s.w);
+                            note(p.step_linear(w0, s.w, s.dt));
+                            history.clear();
+                            history.push(s.w);
                         }
-                        _ => {
-                            let r = self.p.step_history(&mut self.history, s.w, s.dt);
-                            self.note(r);
-                        }
+                        _ => note(p.step_history(&mut history, s.w, s.dt)),
                     }
-                    self.prev = Some(s.w);
+                    prev = Some(s.w);
                 }
             }
             Input::Mid => {
                 for s in samples {
-                    match (self.prev, self.mid) {
-                        (None, _) => self.prev = Some(s.w),
+                    match (prev, self.mid) {
+                        (None, _) => prev = Some(s.w),
                         (Some(_), None) => self.mid = Some((s.w, s.dt)),
                         (Some(w0), Some((wm, dt1))) => {
-                            let r = self.p.step_mid(w0, wm, s.w, dt1 + s.dt);
-                            self.note(r);
-                            self.prev = Some(s.w);
+                            note(p.step_mid(w0, wm, s.w, dt1 + s.dt));
+                            prev = Some(s.w);
                             self.mid = None;
                         }
                     }
                 }
             }
+        }
+        (self.p, self.prev, self.history) = (p, prev, history);
+        self.refused += refused;
+        if self.first_error.is_none() {
+            self.first_error = first;
         }
     }
     fn attitude(&self) -> Quat<T> {
@@ -325,6 +322,13 @@ impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Integrator<T>
     fn refused(&self) -> (u64, Option<Error>) {
         (self.refused, self.first_error)
     }
+}
+
+#[cold]
+#[inline(never)]
+fn refuse(count: &mut u64, first: &mut Option<Error>, e: Error) {
+    *count += 1;
+    first.get_or_insert(e);
 }
 
 fn boxed<T: Real, S: Scheme + 'static, Z: Stabilizer<T> + 'static>(

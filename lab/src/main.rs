@@ -1,9 +1,9 @@
 //! quatprop lab: the report a user runs to choose a scheme.
 //!
 //! `cargo run --release -p quatprop-lab -- report [--quick] [--out DIR]` writes `DIR/README.md` (default
-//! `report/`) with plots (SVG and PNG) and CSV files. Sub-commands run one study:
-//! `geiger`, `atlas`, `work-precision`, `long-horizon`. `--quick` shrinks every study (CI checks that each one runs and writes
-//! its figures).
+//! `report/`) with plots (SVG and PNG) and CSV files. Sub-commands run one study, with parameters (scene,
+//! schemes, stabilizers, inputs, precision, rates, horizon, steps): see `quatprop-lab help`. `--quick` shrinks
+//! every study (CI checks that each one runs and writes its figures).
 
 mod atlas;
 mod baumgarte_sweep;
