@@ -64,8 +64,10 @@ const IDEAL: SensorModel = SensorModel {
     jitter: 0.0,
 };
 
-/// ±2000 °/s, the drone gyro's range.
+/// ±2000 °/s, the drone gyro's widest range.
 const FS_2000: f64 = 2000.0 * core::f64::consts::PI / 180.0;
+/// ±1000 °/s: a range the 2000 °/s roll exceeds (per axis), so readings clip.
+const FS_1000: f64 = 1000.0 * core::f64::consts::PI / 180.0;
 
 /// The sensor models of the study (MPU-6000-class numbers).
 pub fn models() -> Vec<SensorModel> {
@@ -90,8 +92,8 @@ pub fn models() -> Vec<SensorModel> {
             ..IDEAL
         },
         SensorModel {
-            name: "saturation at ±2000 °/s",
-            full_scale: Some(FS_2000),
+            name: "saturation at ±1000 °/s",
+            full_scale: Some(FS_1000),
             ..IDEAL
         },
         SensorModel {
@@ -105,10 +107,10 @@ pub fn models() -> Vec<SensorModel> {
             ..IDEAL
         },
         SensorModel {
-            name: "all of the above",
+            name: "all of the above (16-bit counts at ±1000 °/s)",
             noise_density: noise,
             bias,
-            full_scale: Some(FS_2000),
+            full_scale: Some(FS_1000),
             counts16: true,
             drop: 0.01,
             jitter: 0.1,
@@ -321,8 +323,7 @@ pub fn sensor_study(
          16 substeps per interval; 8 substeps agree to {ref_check:.1e} rad). Dropped samples arrive as a longer dt (nothing is \
          skipped by the integrator); jitter perturbs each interval by up to ±10% with known timestamps. `ahrs` has no \
          time argument (a fixed `sample_period`), so gaps and jitter are invisible to it. Noise and bias models are \
-         MPU-6000 class; the roll sits at the ±2000 °/s rail and the coning adds over it, so saturation clips \
-         samples.\n\n{head}\n{sep}\n{}\n{stream_row}\n{facts}\n\n\
+         MPU-6000 class; the 2000 °/s roll exceeds a ±1000 °/s range on the roll axis, so those readings clip.\n\n{head}\n{sep}\n{}\n{stream_row}\n{facts}\n\n\
          Reading: the first number is what the integrator adds to the sensor's own error; the second is what the \
          user gets. A scheme whose first number is far below the stream's own row costs nothing the sensor did not \
          already lose. CSV: `sensor_realism.csv`.\n",
