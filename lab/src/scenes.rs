@@ -202,7 +202,8 @@ mod tests {
         ];
         for s in &scenes {
             for &t in &[0.1, 0.77, 3.3] {
-                let d = 1e-6;
+                // Difference step scaled to the rate: the central difference's truncation is (|ω|d)²/6.
+                let d = 1e-6 / (s.rate(t).norm() / 100.0).max(1.0);
                 let dq = (s.attitude(t + d) - s.attitude(t - d)) * (0.5 / d);
                 let w = s.attitude(t).conjugate() * dq * 2.0;
                 let r = s.rate(t);
