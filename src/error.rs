@@ -59,7 +59,7 @@ impl fmt::Display for Error {
             ),
             Error::GainBeyondStability { gain_step, limit } => write!(
                 f,
-                "Baumgarte 4*k*dt = {gain_step} exceeds the scheme's real-axis stability bound {limit}"
+                "Baumgarte 4*k*dt = {gain_step} exceeds the scheme's gain bound {limit} (half its real-axis stability interval)"
             ),
             Error::ZeroQuaternion => f.write_str("quaternion is zero"),
             Error::NonFiniteQuaternion => f.write_str("quaternion is NaN or infinite"),
