@@ -40,8 +40,7 @@ fn propagate<S: Scheme>(s: S, k: f64, h: f64, steps: usize) -> Outcome {
         }
         (n2, n1) = (n1, n);
     }
-    let (d_last, d_prev) = (n1 - n2, 0.0);
-    let _ = d_prev;
+    let d_last = n1 - n2;
     // One more step tells a decaying alternation from a sustained one.
     let n0 = s.advance(q, &rates, h, &z).norm_error();
     let d_next = n0 - n1;

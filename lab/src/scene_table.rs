@@ -3,7 +3,7 @@
 
 use crate::configs::Config;
 use crate::scenes::Scene;
-use crate::work_precision::{attitude_error, scheme_set, stream};
+use crate::work_precision::{attitude_error, error_kind, scheme_set, stream};
 use crate::Ctx;
 use quatprop::Quat;
 use std::fmt::Write as _;
@@ -37,9 +37,9 @@ pub fn scene_table(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], quick: bool) -> Str
             run.feed(&samples);
             let e = attitude_error(run.attitude(), exact);
             let (refused, first) = run.refused();
+            let kind = error_kind(first);
             let first = first.map_or(String::new(), |e| format!("{e:?}"));
             if refused > 0 {
-                let kind = first.split([' ', '{']).next().unwrap_or("");
                 let _ = write!(rows[i], " {e:.2e}, **{refused} steps refused** ({kind}) |");
             } else {
                 let _ = write!(rows[i], " {e:.2e} |");

@@ -259,16 +259,20 @@ pub fn plot_points(ctx: &mut Ctx, name: &str, title: &str, points: &[Point]) {
     });
 }
 
+/// The error's variant name (`StepAngleBeyondStability`, …), "?" for none.
+pub fn error_kind(e: Option<Error>) -> String {
+    e.map_or(String::from("?"), |e| {
+        let s = format!("{e:?}");
+        s.split([' ', '{']).next().unwrap_or("").to_string()
+    })
+}
+
 fn fmt_err(p: &Point) -> String {
     if p.refused > 0 {
         format!(
-            "refused {} steps ({:?})",
+            "refused {} steps ({})",
             p.refused,
-            p.first_error
-                .map_or(String::from("?"), |e| format!("{e:?}"))
-                .split_whitespace()
-                .next()
-                .unwrap_or("")
+            error_kind(p.first_error)
         )
     } else {
         format!("{:.2e} / {:.2e}", p.final_err, p.max_err)
