@@ -37,6 +37,20 @@ impl<T: Real> Accumulator<T> for Plain {
 }
 
 /// Kahan-compensated addition: `y = Δ − c; t = q + y; c = (t − q) − y; q = t`.
+///
+/// ```
+/// use quatprop::accumulate::{Accumulator, Kahan, Plain};
+/// use quatprop::Quat;
+/// let tiny = Quat::new(1e-8_f32, 0.0, 0.0, 0.0); // below half an ulp of 1.0 in f32
+/// let (mut plain, mut kahan) = (Quat::IDENTITY, Quat::IDENTITY);
+/// let (mut p, mut k) = (Plain, Kahan::new());
+/// for _ in 0..1000 {
+///     plain = p.add(plain, tiny);
+///     kahan = k.add(kahan, tiny);
+/// }
+/// assert_eq!(plain.w, 1.0); // every increment lost
+/// assert!((kahan.w - 1.00001).abs() < 2e-7); // kept
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Kahan<T> {
@@ -51,12 +65,6 @@ impl<T: Real> Kahan<T> {
         Self {
             compensation: Quat::ZERO,
         }
-    }
-
-    /// The pending compensation (the attitude's best value is `q − compensation`).
-    #[must_use]
-    pub fn compensation(&self) -> Quat<T> {
-        self.compensation
     }
 }
 

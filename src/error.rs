@@ -3,6 +3,17 @@
 use core::fmt;
 
 /// Why a step or a construction was refused. The propagator state is unchanged whenever one is returned.
+///
+/// ```
+/// use quatprop::{input::Hold, scheme::Rk4, stabilize::Off, Error, GyroSample, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, Rk4, Hold, Off)?;
+/// let before = p;
+/// assert_eq!(p.push(GyroSample::new(Vec3::new(f32::NAN, 0.0, 0.0)), 1e-3), Err(Error::NonFiniteRate));
+/// assert_eq!(p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0)), 0.0), Err(Error::NonPositiveStep));
+/// assert_eq!(p, before); // bit for bit
+/// assert_eq!(Error::NonFiniteRate.to_string(), "rate sample is NaN or infinite");
+/// # Ok::<(), Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
@@ -14,14 +25,14 @@ pub enum Error {
     /// The step `dt` is zero or negative.
     NonPositiveStep,
     /// The step angle `dt · max|ω|` (rad) exceeds the scheme's stability bound
-    /// (see [`crate::scheme::Scheme::step_angle_limit`]).
+    /// ([`crate::scheme::Information::step_angle_limit`]).
     StepAngleBeyondStability {
         /// `dt · max|ω|` of the refused step (rad).
         step_angle: f64,
         /// The scheme's bound (rad).
         limit: f64,
     },
-    /// Baumgarte's `4 k dt` exceeds the scheme's bound ([`crate::scheme::Scheme::gain_step_limit`], half its
+    /// Baumgarte's `4 k dt` exceeds [`crate::scheme::Baumgarte::gain_step_limit`] (half the scheme's
     /// stability interval on the negative real axis), beyond which the stabilizing term itself can make the
     /// propagation oscillate or diverge.
     GainBeyondStability {
@@ -34,17 +45,12 @@ pub enum Error {
     ZeroQuaternion,
     /// The initial quaternion has a NaN or infinite component.
     NonFiniteQuaternion,
-    /// A stabilizer parameter is invalid: `Every(0)`, or a Baumgarte `k` that is negative or not finite.
+    /// A stabilizer parameter is invalid: `Every(0)`.
     InvalidStabilizer,
+    /// A Baumgarte gain `k` is negative or not finite.
+    InvalidGain,
     /// The step produced a non-finite attitude (arithmetic overflow); the step was discarded.
     NonFiniteResult,
-    /// A delta-angle update got another number of increments than its coning correction takes.
-    SampleCount {
-        /// Increments the correction takes.
-        expected: u32,
-        /// Increments given.
-        got: u32,
-    },
 }
 
 impl fmt::Display for Error {
@@ -63,14 +69,9 @@ impl fmt::Display for Error {
             ),
             Error::ZeroQuaternion => f.write_str("quaternion is zero"),
             Error::NonFiniteQuaternion => f.write_str("quaternion is NaN or infinite"),
-            Error::InvalidStabilizer => {
-                f.write_str("invalid stabilizer: Every(0) or Baumgarte k negative or not finite")
-            }
+            Error::InvalidStabilizer => f.write_str("invalid stabilizer: Every(0)"),
+            Error::InvalidGain => f.write_str("Baumgarte gain k is negative or not finite"),
             Error::NonFiniteResult => f.write_str("step overflowed to a non-finite attitude"),
-            Error::SampleCount { expected, got } => write!(
-                f,
-                "coning correction takes {expected} angle increments per update, got {got}"
-            ),
         }
     }
 }

@@ -8,16 +8,16 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod accumulate;
-pub mod coning;
 mod convert;
+mod dispatch;
 mod error;
+mod gauss;
 #[cfg(feature = "embedded-hal")]
 #[cfg_attr(docsrs, doc(cfg(feature = "embedded-hal")))]
 pub mod gyro;
-mod history;
+pub mod input;
 mod propagator;
 mod quat;
-pub mod rates;
 mod real;
 mod sample;
 pub mod scheme;
@@ -26,9 +26,8 @@ mod vec3;
 
 pub use convert::{EulerZxz, EulerZyx};
 pub use error::Error;
-pub use history::SampleHistory;
 pub use propagator::Propagator;
 pub use quat::Quat;
 pub use real::Real;
-pub use sample::GyroSample;
+pub use sample::{DeltaAngle, GyroSample, Sample};
 pub use vec3::Vec3;

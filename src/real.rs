@@ -12,17 +12,39 @@
 use core::fmt::{Debug, Display};
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
+pub(crate) mod sealed {
+    /// The crate's internal floating-point operations. The trait is not nameable outside the crate, so
+    /// [`super::Real`] is sealed and these items stay out of the public API.
+    pub trait Float: Copy {
+        /// `true` where this type has hardware arithmetic (f32 on `eabihf` ARM, f32 and f64 on x86-64 and
+        /// aarch64). Chooses how finiteness is checked: a multiply-add probe is cheap with an FPU and costly
+        /// in software float, where integer bit tests win.
+        const HARDWARE_FLOAT: bool;
+        /// Largest squared half-angle `x²` (rad²) for which the exponential map uses its Taylor branch.
+        /// Chosen so that the first omitted term (x⁶/720 in cos, x⁶/5040 in sin x / x) is below a quarter
+        /// ulp: `f32`: x < 0.1, `f64`: x < 0.005.
+        const EXP_TAYLOR_MAX_SQ: Self;
+        /// Natural exponential.
+        fn exp(self) -> Self;
+        /// `sqrt(self² + y²)` without undue overflow or underflow.
+        fn hypot(self, y: Self) -> Self;
+        /// The larger of two numbers by one comparison (`other` if either is NaN). For validated, finite
+        /// values: `f32::max`'s NaN handling costs a call to `fmaxf` on Cortex-M4.
+        fn max(self, other: Self) -> Self;
+        /// `atan2` of the Euler-angle conversions: `libm`, or `micromath` for `f32` with the `micromath`
+        /// feature (max error about 0.002 rad, see its documentation).
+        fn atan2_conversion(self, x: Self) -> Self;
+        /// `w² + x² + y² + z² − 1` with its own rounding error far below ε (`f32`: in `f64`, where the
+        /// squares are exact; `f64`: compensated with `fma`). Telemetry only, never on the step path.
+        fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
+    }
 }
 
 /// A real number type the propagator computes in: `f32` (what firmware runs) or `f64`.
 ///
 /// Sealed: the algorithms rely on IEEE 754 binary32/binary64 rounding.
 pub trait Real:
-    sealed::Sealed
+    sealed::Float
     + Copy
     + Default
     + Debug
@@ -53,106 +75,37 @@ pub trait Real:
     const EPSILON: Self;
     /// Largest finite value.
     const MAX: Self;
-    /// `true` where this type has hardware arithmetic (f32 on `eabihf` ARM, f32 and f64 on x86-64 and
-    /// aarch64). Chooses how finiteness is checked: a multiply-add probe is cheap with an FPU and costly
-    /// in software float, where integer bit tests win.
-    const HARDWARE_FLOAT: bool;
-    /// Largest squared half-angle `x²` (rad²) for which the exponential map uses its Taylor branch.
-    ///
-    /// Chosen so that the first omitted term (x⁶/720 in cos, x⁶/5040 in sin x / x) is below a quarter ulp:
-    /// `f32`: x < 0.1, `f64`: x < 0.005.
-    const EXP_TAYLOR_MAX_SQ: Self;
 
     /// Converts an `f64` constant (rounds to nearest for `f32`).
     fn from_f64(v: f64) -> Self;
     /// Widens to `f64` (exact).
     fn to_f64(self) -> f64;
-    /// Converts an integer count (rounds to nearest).
-    fn from_u32(v: u32) -> Self;
     /// Correctly rounded square root.
     fn sqrt(self) -> Self;
     /// Sine (rad).
     fn sin(self) -> Self;
     /// Cosine (rad).
     fn cos(self) -> Self;
-    /// Natural exponential.
-    fn exp(self) -> Self;
     /// Four-quadrant arctangent of `self / x` (rad, in (−π, π]).
     fn atan2(self, x: Self) -> Self;
-    /// `atan2` used by the Euler-angle conversions: `libm`, or `micromath` for `f32` with the
-    /// `micromath` feature (max error about 0.002 rad, see its documentation).
-    fn atan2_conversion(self, x: Self) -> Self;
-    /// `sqrt(self² + y²)` without undue overflow or underflow.
-    fn hypot(self, y: Self) -> Self;
     /// Absolute value.
     fn abs(self) -> Self;
     /// `true` unless NaN or ±∞.
     fn is_finite(self) -> bool;
-    /// The larger of two numbers, by one comparison (`other` if either is NaN). Used on validated, finite
-    /// values only: `f32::max`'s NaN handling costs a call to `fmaxf` on Cortex-M4.
-    fn max(self, other: Self) -> Self;
-    /// `w² + x² + y² + z² − 1`, evaluated so that its own rounding error is far below ε
-    /// (`f32`: in `f64`, where the squares are exact; `f64`: compensated with `fma`).
-    /// Used for telemetry (`norm_error`), never on the step path.
-    fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
 }
 
 macro_rules! impl_real {
     ($t:ty, $sqrt:path, $sin:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
-        impl Real for $t {
-            const ZERO: Self = 0.0;
-            const ONE: Self = 1.0;
-            const TWO: Self = 2.0;
-            const HALF: Self = 0.5;
-            const PI: Self = core::f64::consts::PI as $t;
-            const EPSILON: Self = <$t>::EPSILON;
-            const MAX: Self = <$t>::MAX;
+        impl sealed::Float for $t {
             const EXP_TAYLOR_MAX_SQ: Self = $taylor;
             const HARDWARE_FLOAT: bool = $hw;
-
-            #[inline(always)]
-            fn from_f64(v: f64) -> Self {
-                v as $t
-            }
-            #[inline(always)]
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-            #[inline(always)]
-            fn from_u32(v: u32) -> Self {
-                v as $t
-            }
-            #[inline(always)]
-            fn sqrt(self) -> Self {
-                $sqrt(self)
-            }
-            #[inline(always)]
-            fn sin(self) -> Self {
-                $sin(self)
-            }
-            #[inline(always)]
-            fn cos(self) -> Self {
-                $cos(self)
-            }
             #[inline(always)]
             fn exp(self) -> Self {
                 $exp(self)
             }
             #[inline(always)]
-            fn atan2(self, x: Self) -> Self {
-                $atan2(self, x)
-            }
-            #[inline(always)]
             fn hypot(self, y: Self) -> Self {
                 $hypot(self, y)
-            }
-            #[inline(always)]
-            fn abs(self) -> Self {
-                <$t>::abs(self)
-            }
-            #[inline(always)]
-            fn is_finite(self) -> bool {
-                <$t>::is_finite(self)
             }
             #[inline(always)]
             fn max(self, other: Self) -> Self {
@@ -169,6 +122,49 @@ macro_rules! impl_real {
             #[inline]
             fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self {
                 $sum_sq(w, x, y, z)
+            }
+        }
+
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::f64::consts::PI as $t;
+            const EPSILON: Self = <$t>::EPSILON;
+            const MAX: Self = <$t>::MAX;
+
+            #[inline(always)]
+            fn from_f64(v: f64) -> Self {
+                v as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                $atan2(self, x)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
             }
         }
     };

@@ -1,102 +1,132 @@
-//! Integration schemes: how one step advances the attitude.
+//! Integration schemes: how one step turns the rate function of the step ([`Segment`]) into an attitude
+//! increment. A scheme knows nothing of stabilization (that is [`crate::stabilize`], after the step) or of
+//! how the increment is added ([`crate::accumulate`]).
 //!
-//! | scheme | order (smooth ω) | stages | stability bound `h·|ω|` | norm factor `|R(ix)|²`, `x = h|ω|/2` |
-//! |---|---|---|---|---|
-//! | [`Euler`] | 1 | 1 | none (≤ 2 admitted) | `1 + x²` |
-//! | [`Rk2`] | 2 | 2 | none (≤ 2√2 admitted) | `1 + x⁴/4` |
-//! | [`Rk3`] | 3 | 3 | 2√3 ≈ 3.46 | `1 − x⁴/12 + x⁶/36` |
-//! | [`Rk4`] | 4 | 4 | 4√2 ≈ 5.66 | `1 − x⁶/72 + x⁸/576` |
-//! | [`Rk5`] | 5 | 6 | ≈ 2.00 (see README) | `1 − x⁶/1800 + O(x⁸)` |
-//! | [`ExpMap`] | exact (held), 2 (linear), 4 (three samples) | – | none needed | 1 |
-//! | [`Magnus4`] | 4 from the Gauss-point rates (`step_gauss`, `step_mid`) | – | none needed | 1 |
-//! | [`Cf4`] | 4 from the Gauss-point rates, two exponentials, no cross product | – | none needed | 1 |
+//! | scheme | order | stability bound `h·max|ω|` (rad) | norm factor per step, `x = h·|ω|/2` |
+//! |---|---|---|---|
+//! | [`Euler`] | 1 | none; ≤ 2 admitted | `1 + x²` |
+//! | [`Rk2`] | 2 | none; ≤ 2√2 admitted | `1 + x⁴/4` |
+//! | [`Rk3`] | 3 | 2√3 ≈ 3.46 | `1 − x⁴/12 + x⁶/36` |
+//! | [`Rk4`] | 4 | 4√2 ≈ 5.66 | `1 − x⁶/72 + x⁸/576` (the seed's `1 − β`) |
+//! | [`Rk5`] | 5 | ≈ 1.99 | `1 − x⁶/1800 + O(x⁸)` |
+//! | [`ExpMap`] | 4 (Magnus-4 rotation vector of the segment) | none | 1 |
+//! | [`Magnus4`] | 4 (rates at the Gauss nodes) | none | 1 |
+//! | [`Cf4`] | 4 (Gauss nodes, two exponentials, no cross product) | none | 1 |
 //!
-//! Each scheme is a zero-sized type, so a firmware that names one links only it; [`Method`] chooses one at
-//! run time. The order a step reaches also depends on the input model: with one gyro sample per step, any
-//! scheme that sees only the two samples bracketing the step is second order (see [`crate::rates`]).
+//! The norm factor is `|q_{n+1}|²/|q_n|²` for a held rate and no stabilization. These figures are
+//! [`Scheme::information`], computed from each tableau at compile time. The order a step reaches also
+//! depends on the input model: with one sample per step and only the two samples bracketing the step, any
+//! scheme is second order (see [`crate::input`]).
+//!
+//! Each scheme is a zero-sized type, so a firmware that names one links only it; [`SchemeKind`] chooses
+//! one at run time. [`Baumgarte`] wraps a Runge–Kutta scheme with the seed's stabilizing right-hand side.
 
+mod baumgarte;
 mod exp_map;
-mod explicit_rk;
-mod magnus;
-pub mod tableau;
+mod rk;
+mod tableau;
 mod tableaux;
 
-pub use exp_map::ExpMap;
-pub use explicit_rk::held_rate_step_by_stages;
-pub use magnus::{Cf4, Magnus4};
-pub use tableau::ButcherTableau;
+pub use baumgarte::Baumgarte;
+pub use exp_map::{Cf4, ExpMap, Magnus4};
+pub use rk::RungeKutta;
 pub use tableaux::{Euler, Rk2, Rk3, Rk4, Rk5};
 
-use crate::rates::RateModel;
-use crate::stabilize::Stabilizer;
-use crate::{Quat, Real};
+use crate::dispatch::dispatch;
+use crate::input::Segment;
+use crate::{Error, Quat, Real};
 
-/// An integration scheme for `q' = ½ q ⊗ (0, ω) + σ(q) q`.
-pub trait Scheme: Copy {
+/// What a scheme is, for analysis: one record per scheme (order, stability bounds, norm-factor polynomial).
+///
+/// ```
+/// use quatprop::scheme::{Rk4, Scheme};
+/// let info = Scheme::<f64>::information(&Rk4);
+/// assert_eq!((info.name, info.order), ("Rk4", 4));
+/// assert!((info.step_angle_limit - 4.0 * 2f64.sqrt()).abs() < 1e-12);
+/// // The seed's eq. (3): |q|² shrinks by β = x⁶/72 − x⁸/576 per step, x = h|ω|/2.
+/// let x: f64 = 0.05;
+/// assert!((info.norm_change(0.1) + x.powi(6) / 72.0 - x.powi(8) / 576.0).abs() < 1e-20);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Information {
     /// Short name, e.g. `"Rk4"`.
-    fn name(&self) -> &'static str;
+    pub name: &'static str,
+    /// Classical order on a smooth problem (Runge–Kutta: of the tableau; exponential maps: of their
+    /// rotation vector, reached with a fourth-order input model).
+    pub order: u32,
+    /// Largest admitted step angle `h·max|ω|` (rad); a longer step is refused with
+    /// [`Error::StepAngleBeyondStability`]. For RK3–RK5 the end of the stability interval on the imaginary
+    /// axis; for Euler and RK2 (no interval: every step gains norm) where one step would double `|q|²`;
+    /// infinite for the exponential maps.
+    pub step_angle_limit: f64,
+    /// End of the stability interval on the negative real axis (`|R(−y)| ≤ 1` for `y` up to it).
+    pub real_axis_limit: f64,
+    /// Coefficients (constant first) of `|R(ix)|² − 1` as a polynomial in `x²`, `x = h|ω|/2`: the relative
+    /// change of `|q|²` per step with a held rate and no stabilization. All zero for the exponential maps.
+    pub norm_change_polynomial: [f64; 7],
+}
 
-    /// Classical order on a smooth problem (what the scheme can reach with an exact rate).
-    fn order(&self) -> u32;
-
-    /// Largest admitted step angle `h·max|ω|` (rad); steps beyond it are refused with
-    /// [`crate::Error::StepAngleBeyondStability`]. Derived from `|R(ix)|²`, see
-    /// [`tableau::step_angle_limit`]. Infinite for the exponential map.
-    fn step_angle_limit(&self) -> f64;
-
-    /// End of the stability interval on the negative real axis (`h·λ`, `|R(−hλ)| ≤ 1` up to it).
-    fn real_axis_limit(&self) -> f64;
-
-    /// Largest Baumgarte `4k·h` the propagator accepts: half of [`Scheme::real_axis_limit`].
-    ///
-    /// The linear bound alone is not enough. The Baumgarte term is nonlinear (`−4kN(1 + N)`), the norm
-    /// settles on the seed's `N∞ ≠ 0`, and the one-step map loses its fixed point before `4kh` reaches the
-    /// real-axis limit for some schemes: in propagation (lab `baumgarte_sweep`, |ω| = 1 rad/s, H|ω| from 0.1 to
-    /// 2) Rk5 escapes at 0.82–0.96 of the real-axis limit and stops settling at 0.66–0.82 of it; every scheme
-    /// settles below half of it. Gains that large correct most of the norm error in one step anyway (the
-    /// seed's optimal gains are `4kh` ≈ 0.002–0.05).
-    #[inline(always)]
-    fn gain_step_limit(&self) -> f64 {
-        0.5 * self.real_axis_limit()
+impl Information {
+    /// `|R(ix)|² − 1` at the step angle `h|ω|` (rad), from its polynomial (no cancellation).
+    #[must_use]
+    pub fn norm_change(&self, step_angle: f64) -> f64 {
+        let x = 0.5 * step_angle;
+        tableau::poly_eval(&self.norm_change_polynomial, x * x)
     }
 
-    /// `|R(ix)|² − 1` at `x = h|ω|/2`: the per-step relative change of `|q|²` for a held rate with step angle
-    /// `h|ω|` (rad) and no stabilization, evaluated from its own polynomial in `x²` (no cancellation).
-    fn norm_change(&self, step_angle: f64) -> f64;
-
-    /// Per-step factor `|R(ix)|²` of `|q|²` for a held rate with step angle `h|ω|` (rad), no stabilization.
-    fn norm_factor(&self, step_angle: f64) -> f64 {
+    /// `|R(ix)|²`: the per-step factor of `|q|²` at the step angle `h|ω|` (rad).
+    #[must_use]
+    pub fn norm_factor(&self, step_angle: f64) -> f64 {
         1.0 + self.norm_change(step_angle)
     }
+}
 
-    /// The increment `Δ` of one step of length `h` (s) from `q` with the rates of `rates`: the new attitude
-    /// is `q + Δ`. Schemes return increments so that the propagator can add them with compensated summation
-    /// (see [`crate::accumulate`]). No checks: the propagator validates inputs first.
-    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
-        &self,
-        q: Quat<T>,
-        rates: &R,
-        h: T,
-        stabilizer: &Z,
-    ) -> Quat<T>;
+/// An integration scheme for `q' = ½ q ⊗ (0, ω)` in precision `T`.
+pub trait Scheme<T: Real>: Copy {
+    /// Order, bounds and norm behaviour of the scheme.
+    fn information(&self) -> Information;
 
-    /// `q + increment(…)`: one unchecked step (the lab calls this to explore beyond the bounds).
+    /// Refuses a step of `h` (s) the scheme cannot take: by default one whose step angle exceeds
+    /// [`Information::step_angle_limit`].
+    ///
+    /// # Errors
+    /// [`Error::StepAngleBeyondStability`] (and for [`Baumgarte`], [`Error::GainBeyondStability`]).
     #[inline(always)]
-    fn advance<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
-        &self,
-        q: Quat<T>,
-        rates: &R,
-        h: T,
-        stabilizer: &Z,
-    ) -> Quat<T> {
-        q + self.increment(q, rates, h, stabilizer)
+    fn check<G: Segment<T>>(&self, segment: &G, h: T) -> Result<(), Error> {
+        check_step_angle(self.information().step_angle_limit, segment, h)
     }
+
+    /// The increment `Δ` of one step of `h` (s) from `q` over `segment`: the new attitude is `q + Δ`,
+    /// formed without the cancellation of `q + Δ − q` so that [`crate::accumulate`] can add it with
+    /// compensation. No checks: call [`Scheme::check`] first (the propagator does).
+    fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T>;
+}
+
+/// The step-angle check shared by every scheme: `max|ω·h| ≤ limit` (skipped for an infinite limit).
+#[inline(always)]
+pub(crate) fn check_step_angle<T: Real, G: Segment<T>>(
+    limit: f64,
+    segment: &G,
+    h: T,
+) -> Result<(), Error> {
+    if limit.is_finite() {
+        let angle_sq = segment.max_step_angle_squared(h);
+        let l = T::from_f64(limit);
+        if !(angle_sq <= l * l) {
+            return Err(Error::StepAngleBeyondStability {
+                step_angle: angle_sq.sqrt().to_f64(),
+                limit,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Any scheme, chosen at run time (the host lab's way; firmware names one type instead).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Method {
+pub enum SchemeKind {
     /// [`Euler`].
     Euler,
     /// [`Rk2`].
@@ -115,83 +145,46 @@ pub enum Method {
     Cf4,
 }
 
-impl Method {
+impl SchemeKind {
     /// Every scheme.
-    pub const ALL: [Method; 8] = [
-        Method::Euler,
-        Method::Rk2,
-        Method::Rk3,
-        Method::Rk4,
-        Method::Rk5,
-        Method::ExpMap,
-        Method::Magnus4,
-        Method::Cf4,
+    pub const ALL: [SchemeKind; 8] = [
+        SchemeKind::Euler,
+        SchemeKind::Rk2,
+        SchemeKind::Rk3,
+        SchemeKind::Rk4,
+        SchemeKind::Rk5,
+        SchemeKind::ExpMap,
+        SchemeKind::Magnus4,
+        SchemeKind::Cf4,
     ];
 }
 
-macro_rules! dispatch {
+macro_rules! each {
     ($self:ident, $s:ident => $e:expr) => {
-        match *$self {
-            Method::Euler => {
-                let $s = Euler;
-                $e
-            }
-            Method::Rk2 => {
-                let $s = Rk2;
-                $e
-            }
-            Method::Rk3 => {
-                let $s = Rk3;
-                $e
-            }
-            Method::Rk4 => {
-                let $s = Rk4;
-                $e
-            }
-            Method::Rk5 => {
-                let $s = Rk5;
-                $e
-            }
-            Method::ExpMap => {
-                let $s = ExpMap;
-                $e
-            }
-            Method::Magnus4 => {
-                let $s = Magnus4;
-                $e
-            }
-            Method::Cf4 => {
-                let $s = Cf4;
-                $e
-            }
-        }
+        dispatch!(*$self;
+            SchemeKind::Euler => Euler,
+            SchemeKind::Rk2 => Rk2,
+            SchemeKind::Rk3 => Rk3,
+            SchemeKind::Rk4 => Rk4,
+            SchemeKind::Rk5 => Rk5,
+            SchemeKind::ExpMap => ExpMap,
+            SchemeKind::Magnus4 => Magnus4,
+            SchemeKind::Cf4 => Cf4;
+            $s => $e)
     };
 }
 
-impl Scheme for Method {
-    fn name(&self) -> &'static str {
-        dispatch!(self, s => s.name())
-    }
-    fn order(&self) -> u32 {
-        dispatch!(self, s => s.order())
-    }
-    fn step_angle_limit(&self) -> f64 {
-        dispatch!(self, s => s.step_angle_limit())
-    }
-    fn real_axis_limit(&self) -> f64 {
-        dispatch!(self, s => s.real_axis_limit())
-    }
-    fn norm_change(&self, step_angle: f64) -> f64 {
-        dispatch!(self, s => s.norm_change(step_angle))
+impl<T: Real> Scheme<T> for SchemeKind {
+    #[inline]
+    fn information(&self) -> Information {
+        each!(self, s => Scheme::<T>::information(&s))
     }
     #[inline]
-    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
-        &self,
-        q: Quat<T>,
-        rates: &R,
-        h: T,
-        stabilizer: &Z,
-    ) -> Quat<T> {
-        dispatch!(self, s => s.increment(q, rates, h, stabilizer))
+    fn check<G: Segment<T>>(&self, segment: &G, h: T) -> Result<(), Error> {
+        each!(self, s => s.check(segment, h))
+    }
+    #[inline]
+    fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
+        each!(self, s => s.increment(q, segment, h))
     }
 }

@@ -8,12 +8,11 @@
 //! the coefficients.
 
 /// The most stages any tableau in the crate has.
-pub const MAX_STAGES: usize = 6;
+pub(crate) const MAX_STAGES: usize = 6;
 
-/// An explicit Butcher tableau with exact coefficients (written as fractions of integers).
-///
-/// Implement this for a unit struct and it becomes a [`crate::scheme::Scheme`] through the shared
-/// explicit Runge–Kutta engine.
+/// An explicit Butcher tableau with exact coefficients (written as fractions of integers). Crate-private
+/// (the trait is not nameable outside the crate): each tableau is a [`super::Scheme`] through the one
+/// explicit Runge–Kutta engine, and its analysis data is public as [`super::Information`].
 pub trait ButcherTableau: Copy + Default {
     /// Short name, e.g. `"Rk4"`.
     const NAME: &'static str;
@@ -42,10 +41,18 @@ pub trait ButcherTableau: Copy + Default {
     const STEP_ANGLE_LIMIT: f64 = step_angle_limit(&Self::STABILITY_POLYNOMIAL);
     /// Largest `h·λ` with `|R(−hλ)| ≤ 1` on the negative real axis, see [`real_axis_limit`].
     const REAL_AXIS_LIMIT: f64 = real_axis_limit(&Self::STABILITY_POLYNOMIAL);
+    /// Everything above as the public record.
+    const INFORMATION: super::Information = super::Information {
+        name: Self::NAME,
+        order: Self::ORDER,
+        step_angle_limit: Self::STEP_ANGLE_LIMIT,
+        real_axis_limit: Self::REAL_AXIS_LIMIT,
+        norm_change_polynomial: Self::NORM_CHANGE_POLYNOMIAL,
+    };
 }
 
 /// `r_0 = 1`, `r_m = bᵀ A^(m−1) 𝟙` for `m = 1 … s` (zero beyond `s`).
-pub const fn stability_polynomial(
+pub(crate) const fn stability_polynomial(
     a: &[[f64; MAX_STAGES]; MAX_STAGES],
     b: &[f64; MAX_STAGES],
     stages: usize,
@@ -86,7 +93,7 @@ pub const fn stability_polynomial(
 
 /// Replaces `r_0 … r_order` by the exact `1/m!` that the order conditions imply, so the polynomial carries
 /// no rounding of the tableau's fractions (RK3's `Σb` is 0.9999999999999999 in binary).
-pub const fn exact_low_order(mut r: [f64; MAX_STAGES + 1], order: u32) -> [f64; MAX_STAGES + 1] {
+pub(crate) const fn exact_low_order(mut r: [f64; MAX_STAGES + 1], order: u32) -> [f64; MAX_STAGES + 1] {
     let mut m = 0;
     let mut factorial = 1.0;
     while m <= order as usize && m <= MAX_STAGES {
@@ -101,7 +108,7 @@ pub const fn exact_low_order(mut r: [f64; MAX_STAGES + 1], order: u32) -> [f64; 
 
 /// The held-rate step as `q ← q ⊗ (C(x²), S(x²)·v)` with `v = h ω/2`, `x² = |v|²`:
 /// `C(s) = Σ_j r_{2j} (−s)^j` and `S(s) = Σ_j r_{2j+1} (−s)^j`. Returns `(C, S)` coefficient lists.
-pub const fn rotation_polynomials(
+pub(crate) const fn rotation_polynomials(
     r: &[f64; MAX_STAGES + 1],
 ) -> ([f64; MAX_STAGES / 2 + 1], [f64; MAX_STAGES / 2 + 1]) {
     let mut c = [0.0; MAX_STAGES / 2 + 1];
@@ -121,7 +128,7 @@ pub const fn rotation_polynomials(
 }
 
 /// Evaluates a polynomial with coefficients `p` (constant first) at `s`.
-pub const fn poly_eval<const N: usize>(p: &[f64; N], s: f64) -> f64 {
+pub(crate) const fn poly_eval<const N: usize>(p: &[f64; N], s: f64) -> f64 {
     let mut acc = 0.0;
     let mut i = N;
     while i > 0 {
@@ -133,7 +140,7 @@ pub const fn poly_eval<const N: usize>(p: &[f64; N], s: f64) -> f64 {
 
 /// The per-step norm factor `|R(ix)|² = C(x²)² + x² S(x²)²` at `x = h|ω|/2`:
 /// with the rate held and no stabilization, `|q_{n+1}|² = |R(ix)|² · |q_n|²` exactly.
-pub const fn norm_factor(r: &[f64; MAX_STAGES + 1], x: f64) -> f64 {
+pub(crate) const fn norm_factor(r: &[f64; MAX_STAGES + 1], x: f64) -> f64 {
     let (c, s) = rotation_polynomials(r);
     let s2 = x * x;
     let cv = poly_eval(&c, s2);
@@ -142,7 +149,7 @@ pub const fn norm_factor(r: &[f64; MAX_STAGES + 1], x: f64) -> f64 {
 }
 
 /// Coefficients of `|R(ix)|² − 1` as a polynomial in `s = x²` (degree ≤ MAX_STAGES).
-pub const fn norm_factor_deviation(r: &[f64; MAX_STAGES + 1]) -> [f64; MAX_STAGES + 1] {
+pub(crate) const fn norm_factor_deviation(r: &[f64; MAX_STAGES + 1]) -> [f64; MAX_STAGES + 1] {
     let (c, s) = rotation_polynomials(r);
     let mut p = [0.0; MAX_STAGES + 1];
     let n = MAX_STAGES / 2 + 1;
@@ -166,7 +173,7 @@ pub const fn norm_factor_deviation(r: &[f64; MAX_STAGES + 1]) -> [f64; MAX_STAGE
 
 /// `true` if `|R(ix)|² < 1` for small `x > 0`: the lowest non-vanishing coefficient of `|R(ix)|² − 1`
 /// is negative (the method loses norm, like the seed's RK4), `false` if it gains norm (Euler, RK2).
-pub const fn dissipative_near_zero(r: &[f64; MAX_STAGES + 1]) -> bool {
+pub(crate) const fn dissipative_near_zero(r: &[f64; MAX_STAGES + 1]) -> bool {
     let p = norm_factor_deviation(r);
     let mut i = 1;
     while i <= MAX_STAGES {
@@ -189,7 +196,7 @@ pub const fn dissipative_near_zero(r: &[f64; MAX_STAGES + 1]) -> bool {
 /// - Methods with `|R(ix)|² > 1` for every `x > 0` (Euler: 1 + x², RK2: 1 + x⁴/4) have no such interval;
 ///   every step amplifies `|q|`. For them the bound is where one step would double `|q|²`
 ///   (`|R(ix)|² = 2`): Euler `h|ω| ≤ 2`, RK2 `h|ω| ≤ 2√2`. Use them with a normalizing stabilizer.
-pub const fn step_angle_limit(r: &[f64; MAX_STAGES + 1]) -> f64 {
+pub(crate) const fn step_angle_limit(r: &[f64; MAX_STAGES + 1]) -> f64 {
     let level = if dissipative_near_zero(r) { 1.0 } else { 2.0 };
     // Scan x upward past the region where |R|² − level is of one sign, then bisect the crossing.
     let start = 1e-3;
@@ -223,7 +230,7 @@ pub const fn step_angle_limit(r: &[f64; MAX_STAGES + 1]) -> f64 {
 /// The end of the stability interval on the negative real axis: the largest `y` with `|R(−t)| ≤ 1`
 /// for all `t ∈ [0, y]` (Euler and RK2: 2, RK3: 2.51, RK4: 2.79). Baumgarte's term linearizes to
 /// `N' = −4kN`, an eigenvalue `−4k` of the norm direction, so `4 k h` must stay below this bound.
-pub const fn real_axis_limit(r: &[f64; MAX_STAGES + 1]) -> f64 {
+pub(crate) const fn real_axis_limit(r: &[f64; MAX_STAGES + 1]) -> f64 {
     let step = 1e-3;
     let mut lo = 0.0;
     let mut k = 0;

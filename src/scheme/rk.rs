@@ -1,11 +1,11 @@
 //! The one explicit Runge–Kutta engine: every [`ButcherTableau`] is a [`Scheme`] through it.
 //!
-//! The engine integrates `q' = ½ g(c, q)` with `g = q ⊗ (0, ω(c)) + s(q) q` (the seed's eq. (7) with
-//! `s = −4kN` for Baumgarte, `s = 0` otherwise), so it works with the half step `hh = h/2` and raw rates:
-//! no stage rescales anything.
+//! The engine integrates `q' = ½ g(c, q)` with `g = q ⊗ (0, ω(c))`, or with [`super::Baumgarte`]'s
+//! right-hand side `g = q ⊗ (0, ω(c)) + s(q) q` (the seed's eq. (7), `s = −4kN`), so it works with the half
+//! step `hh = h/2` and raw rates: no stage rescales anything.
 //!
 //! Two paths, both defined by the tableau alone:
-//! - Rate held over the step and no right-hand-side stabilizer: the step is exactly `q ← R(h·½Ω) q`, and
+//! - Rate held over the step (plain right-hand side): the step is exactly `q ← R(h·½Ω) q`, and
 //!   since `(h·½Ω)² = −x² I` this is one quaternion product `q ⊗ (C(x²), S(x²)·hω/2)` with the polynomials
 //!   `C`, `S` read off the stability polynomial at compile time. No square root, no trigonometry.
 //! - Otherwise (a varying rate, or Baumgarte's nonlinear term): the stages, unrolled by a macro so that every
@@ -14,10 +14,14 @@
 //! In exact arithmetic both paths give the same result for a held rate (a test checks it to rounding).
 
 use super::tableau::{rotation_polynomials, ButcherTableau, MAX_STAGES};
-use super::Scheme;
-use crate::rates::RateModel;
-use crate::stabilize::Stabilizer;
+use super::{Information, Scheme};
+use crate::input::Segment;
 use crate::{Quat, Real, Vec3};
+
+/// The explicit Runge–Kutta schemes ([`super::Euler`] … [`super::Rk5`]): the schemes [`super::Baumgarte`]
+/// can wrap. Sealed: implemented by every tableau of the crate.
+pub trait RungeKutta: ButcherTableau {}
+impl<Tab: ButcherTableau> RungeKutta for Tab {}
 
 /// Compile-time data derived from a tableau for the held-rate path.
 trait HeldRatePolynomials: ButcherTableau {
@@ -142,56 +146,47 @@ pub(crate) fn stage_increment<T: Real, Tab: ButcherTableau, G: Fn(f64, Quat<T>) 
     }
 }
 
-impl<Tab: ButcherTableau> Scheme for Tab {
+impl<T: Real, Tab: ButcherTableau> Scheme<T> for Tab {
     #[inline(always)]
-    fn name(&self) -> &'static str {
-        Tab::NAME
-    }
-    #[inline(always)]
-    fn order(&self) -> u32 {
-        Tab::ORDER
-    }
-    #[inline(always)]
-    fn step_angle_limit(&self) -> f64 {
-        Tab::STEP_ANGLE_LIMIT
-    }
-    #[inline(always)]
-    fn real_axis_limit(&self) -> f64 {
-        Tab::REAL_AXIS_LIMIT
-    }
-    fn norm_change(&self, step_angle: f64) -> f64 {
-        let x = 0.5 * step_angle;
-        super::tableau::poly_eval(&Tab::NORM_CHANGE_POLYNOMIAL, x * x)
+    fn information(&self) -> Information {
+        Tab::INFORMATION
     }
 
     #[inline(always)]
-    fn increment<T: Real, R: RateModel<T>, Z: Stabilizer<T>>(
-        &self,
-        q: Quat<T>,
-        rates: &R,
-        h: T,
-        stabilizer: &Z,
-    ) -> Quat<T> {
+    fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
         let hh = h * T::HALF;
-        if !stabilizer.has_rhs_term() {
-            if let Some(w) = rates.held_rate() {
-                return held_rate_increment::<T, Tab>(q, w * hh);
-            }
-            return stage_increment::<T, Tab, _>(q, hh, |c, y| y.mul_pure(rates.rate_at(c)));
+        if let Some(w) = segment.held_rate() {
+            return held_rate_increment::<T, Tab>(q, w * hh);
         }
-        stage_increment::<T, Tab, _>(q, hh, |c, y| {
-            y.mul_pure(rates.rate_at(c)) + y * stabilizer.rhs_scalar(y)
-        })
+        stage_increment::<T, Tab, _>(q, hh, |c, y| y.mul_pure(segment.rate_at(c)))
     }
 }
 
-/// The held-rate step evaluated through the stages instead of the polynomial (for tests and the lab:
-/// both must agree to rounding).
-#[must_use]
-pub fn held_rate_step_by_stages<T: Real, Tab: ButcherTableau>(
-    q: Quat<T>,
-    w: Vec3<T>,
-    h: T,
-) -> Quat<T> {
-    q + stage_increment::<T, Tab, _>(q, h * T::HALF, |_, y| y.mul_pure(w))
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scheme::{Euler, Rk2, Rk3, Rk4, Rk5};
+
+    /// The held-rate polynomial shortcut and the stages agree to rounding for every tableau.
+    #[test]
+    fn held_rate_polynomial_matches_the_stages() {
+        fn check<Tab: ButcherTableau>() {
+            let q = Quat::new(0.9_f64, 0.1, -0.3, 0.2);
+            let w = Vec3::new(0.7, -1.3, 2.1);
+            for hw in [1e-3, 0.05, 0.3, 0.9] {
+                let hh = hw * 0.5;
+                let by_poly = q + held_rate_increment::<f64, Tab>(q, w * hh);
+                let by_stages = q + stage_increment::<f64, Tab, _>(q, hh, |_, y| y.mul_pure(w));
+                let d = (by_poly - by_stages).dot(by_poly - by_stages).sqrt();
+                assert!(d <= 8.0 * f64::EPSILON, "{} h={hw}: {d:e}", Tab::NAME);
+                // And the polynomial path is not trivially the identity.
+                assert!((by_poly - q).dot(by_poly - q).sqrt() > 0.1 * hw);
+            }
+        }
+        check::<Euler>();
+        check::<Rk2>();
+        check::<Rk3>();
+        check::<Rk4>();
+        check::<Rk5>();
+    }
 }

@@ -1,5 +1,6 @@
-//! Coning corrections for delta-angle input: from the angle increments `Δθᵢ = ∫ ω dt` (rad) over the gyro
-//! sample intervals of one update to the update's rotation vector `φ`, then `q ← q ⊗ exp_q(φ)`.
+//! Coning corrections for delta-angle input ([`super::DeltaAngles`]): from the angle increments
+//! `Δθᵢ = ∫ ω dt` (rad) over the gyro sample intervals of one update to the update's rotation vector `φ`,
+//! then `q ← q ⊗ exp_q(φ)`.
 //!
 //! Summing the increments ignores the non-commutativity of rotation: under coning motion (the rate vector
 //! itself rotating) the attitude drifts about the cone axis. The cross-product corrections below remove that
@@ -7,7 +8,7 @@
 //!
 //! | correction | increments per update | φ | coning drift, small α (rad/s) |
 //! |---|---|---|---|
-//! | [`Uncorrected`] | any | `ΣΔθ` | `α²Ω (ΩT)²/12` |
+//! | [`Uncorrected`] | 1 | `Δθ` | `α²Ω (ΩT)²/12` |
 //! | [`OnePlusPrevious`] | 1 (+ the previous update's) | `Δθ_k + (1/12) Δθ_{k−1} × Δθ_k` | `α²Ω (Ωh)⁴/60` |
 //! | [`TwoSample`] | 2 | `ΣΔθ + (2/3) Δθ₁ × Δθ₂` | `α²Ω (ΩT)⁴/960` |
 //! | [`ThreeSample`] | 3 | `ΣΔθ + (9/20 Δθ₁ + 27/20 Δθ₂) × Δθ₃` | `α²Ω (ΩT)⁶/204120` |
@@ -17,16 +18,17 @@
 //! `T` is the update interval, `h` the sample interval, `Ω` the coning frequency, `α` the cone half-angle.
 //! The drift coefficients are checked against propagation on the exact coning motion in `tests/coning.rs`.
 
+use crate::dispatch::dispatch;
 use crate::{Real, Vec3};
 
 /// A coning correction: the update's rotation vector from its angle increments.
 pub trait ConingCorrection: Copy {
     /// Short name.
     fn name(&self) -> &'static str;
-    /// Increments per update this correction expects (`None`: any number).
-    fn samples(&self) -> Option<usize>;
+    /// Increments per update (1 to 5).
+    fn samples(&self) -> usize;
     /// `φ` (rad) from this update's increments and the previous update's last increment (if any).
-    /// `increments` has the length [`ConingCorrection::samples`] asks for (the propagator checks).
+    /// `increments` has the length [`ConingCorrection::samples`] asks for (the input model gathers them).
     fn rotation_vector<T: Real>(
         &self,
         previous: Option<Vec3<T>>,
@@ -55,7 +57,7 @@ fn compressed<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
     sum(increments) + weighted.cross(*last)
 }
 
-/// No correction: `φ = ΣΔθ`. Any number of increments.
+/// No correction: `φ = Δθ`, one increment per update (the coning drift of the table above).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Uncorrected;
@@ -64,8 +66,8 @@ impl ConingCorrection for Uncorrected {
     fn name(&self) -> &'static str {
         "Uncorrected"
     }
-    fn samples(&self) -> Option<usize> {
-        None
+    fn samples(&self) -> usize {
+        1
     }
     #[inline]
     fn rotation_vector<T: Real>(
@@ -87,8 +89,8 @@ impl ConingCorrection for OnePlusPrevious {
     fn name(&self) -> &'static str {
         "OnePlusPrevious"
     }
-    fn samples(&self) -> Option<usize> {
-        Some(1)
+    fn samples(&self) -> usize {
+        1
     }
     #[inline]
     fn rotation_vector<T: Real>(
@@ -117,8 +119,8 @@ macro_rules! n_sample {
             fn name(&self) -> &'static str {
                 stringify!($name)
             }
-            fn samples(&self) -> Option<usize> {
-                Some($n)
+            fn samples(&self) -> usize {
+                $n
             }
             #[inline]
             fn rotation_vector<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> Vec3<T> {
@@ -157,10 +159,10 @@ n_sample!(
     "Five increments per update: `φ = ΣΔθ + (250 Δθ₁ + 525 Δθ₂ + 650 Δθ₃ + 1375 Δθ₄)/504 × Δθ₅`."
 );
 
-/// Any coning correction, chosen at run time.
+/// Any coning correction, chosen at run time (the host lab's way; firmware names one type instead).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Method {
+pub enum ConingKind {
     /// [`Uncorrected`].
     Uncorrected,
     /// [`OnePlusPrevious`].
@@ -175,61 +177,44 @@ pub enum Method {
     FiveSample,
 }
 
-impl Method {
+impl ConingKind {
     /// Every correction.
-    pub const ALL: [Method; 6] = [
-        Method::Uncorrected,
-        Method::OnePlusPrevious,
-        Method::TwoSample,
-        Method::ThreeSample,
-        Method::FourSample,
-        Method::FiveSample,
+    pub const ALL: [ConingKind; 6] = [
+        ConingKind::Uncorrected,
+        ConingKind::OnePlusPrevious,
+        ConingKind::TwoSample,
+        ConingKind::ThreeSample,
+        ConingKind::FourSample,
+        ConingKind::FiveSample,
     ];
 }
 
-macro_rules! dispatch {
+macro_rules! each {
     ($self:ident, $c:ident => $e:expr) => {
-        match *$self {
-            Method::Uncorrected => {
-                let $c = Uncorrected;
-                $e
-            }
-            Method::OnePlusPrevious => {
-                let $c = OnePlusPrevious;
-                $e
-            }
-            Method::TwoSample => {
-                let $c = TwoSample;
-                $e
-            }
-            Method::ThreeSample => {
-                let $c = ThreeSample;
-                $e
-            }
-            Method::FourSample => {
-                let $c = FourSample;
-                $e
-            }
-            Method::FiveSample => {
-                let $c = FiveSample;
-                $e
-            }
-        }
+        dispatch!(*$self;
+            ConingKind::Uncorrected => Uncorrected,
+            ConingKind::OnePlusPrevious => OnePlusPrevious,
+            ConingKind::TwoSample => TwoSample,
+            ConingKind::ThreeSample => ThreeSample,
+            ConingKind::FourSample => FourSample,
+            ConingKind::FiveSample => FiveSample;
+            $c => $e)
     };
 }
 
-impl ConingCorrection for Method {
+impl ConingCorrection for ConingKind {
     fn name(&self) -> &'static str {
-        dispatch!(self, c => c.name())
+        each!(self, c => c.name())
     }
-    fn samples(&self) -> Option<usize> {
-        dispatch!(self, c => c.samples())
+    fn samples(&self) -> usize {
+        each!(self, c => c.samples())
     }
+    #[inline]
     fn rotation_vector<T: Real>(
         &self,
         previous: Option<Vec3<T>>,
         increments: &[Vec3<T>],
     ) -> Vec3<T> {
-        dispatch!(self, c => c.rotation_vector(previous, increments))
+        each!(self, c => c.rotation_vector(previous, increments))
     }
 }

@@ -1,0 +1,89 @@
+//! Input models: what is known of the body rate ω(t) inside a step, and every piece of state that carries
+//! from one step to the next (the previous sample, the sample history, a pending Gauss sample, the previous
+//! angle increment).
+//!
+//! The propagator holds one input model and feeds it one sensor sample per
+//! [`push`](crate::Propagator::push). The model decides when a sample closes a step and hands the scheme a
+//! [`Segment`]: the rate function of that step. It knows nothing of how the scheme integrates.
+//!
+//! `dt` passed with a sample is always the time (s) from the previous sample to this one.
+//!
+//! | model | sample | a step per | order on a smooth ω (ExpMap) | first sample |
+//! |---|---|---|---|---|
+//! | [`Hold`] | [`GyroSample`] | sample | 1 (exact for a constant rate) | steps |
+//! | [`Linear`] | [`GyroSample`] | sample | 2 | only starts |
+//! | [`History`] | [`GyroSample`] | sample | 4, no latency (cubic through the last four samples) | only starts |
+//! | [`TwiceRate`] | [`GyroSample`] | 2 samples (start shared, middle, end) | 4 | only starts |
+//! | [`GaussPoints`] | [`GyroSample`] | 2 samples at the Gauss points | 4 | pending |
+//! | [`DeltaAngles`] | [`DeltaAngle`] | as many increments as its [coning correction](coning) takes | see [`coning`] | steps or pending |
+//!
+//! A custom model implements [`InputModel`] and returns its own [`Segment`].
+
+pub mod coning;
+mod models;
+pub(crate) mod segment;
+
+pub use models::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
+
+use crate::sample::Sample;
+#[cfg(doc)]
+use crate::{DeltaAngle, GyroSample};
+use crate::{Error, Real, Vec3};
+
+/// The rate function of one step `[t, t + h]`, as a scheme reads it. Rates are body-frame rad/s.
+pub trait Segment<T: Real> {
+    /// ω(t + c·h) (rad/s) at the fraction `c ∈ [0, 1]` of the step (Runge–Kutta stages, Gauss nodes).
+    /// A segment returns its samples exactly at their own nodes.
+    fn rate_at(&self, c: f64) -> Vec3<T>;
+
+    /// `Some(ω)` if ω is constant over the step (the seed's assumption V1): a Runge–Kutta step then
+    /// reduces to one quaternion product.
+    #[inline(always)]
+    fn held_rate(&self) -> Option<Vec3<T>> {
+        None
+    }
+
+    /// Half the angle integral of the step, `½∫ω dt` (rad), from the half step `hh = h/2` (s): the
+    /// quadrature of this segment's own rate function (exact for it).
+    fn half_angle(&self, hh: T) -> Vec3<T>;
+
+    /// `ω × dω/dc` at mid-step (rad²/s², `dω/dc` per unit fraction of the step), accurate to O(h³), or
+    /// `None` if ω keeps its direction over the step. The second Magnus term of the exponential-map
+    /// schemes is built from it.
+    #[inline(always)]
+    fn rate_commutator(&self) -> Option<Vec3<T>> {
+        None
+    }
+
+    /// `max |ω·h|²` over the samples (rad²), scaled before squaring so that a tiny rate over a huge step
+    /// cannot underflow to zero; infinite on overflow (which the stability check refuses).
+    fn max_step_angle_squared(&self, h: T) -> T;
+}
+
+/// What the propagator knows of ω between samples, and the state that carries across steps.
+///
+/// Implementations are small and `Copy`. [`InputModel::accept`] does not change the model: it returns the
+/// next state, which the propagator commits only when the whole step succeeds, so a refused sample leaves
+/// everything as it was.
+pub trait InputModel<T: Real>: Copy {
+    /// What one push carries ([`GyroSample`] for rates, [`DeltaAngle`] for angle increments).
+    type Sample: Sample;
+    /// The rate function of a step this model closes.
+    type Segment: Segment<T>;
+
+    /// Takes `sample`, which arrives `dt` seconds after the previous one (`dt` finite and positive: the
+    /// propagator checks it first). Returns the next state and, if this sample closes a step, the step's
+    /// segment and length `h` (s).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] if the sample has a NaN or infinite component.
+    #[allow(clippy::type_complexity)]
+    fn accept(
+        &self,
+        sample: &Self::Sample,
+        dt: T,
+    ) -> Result<(Self, Option<(Self::Segment, T)>), Error>;
+
+    /// Forgets every sample kept between steps: the next sample starts the model afresh (after a gap).
+    fn restart(&mut self);
+}

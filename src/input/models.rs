@@ -1,0 +1,419 @@
+//! The input models: each owns the samples it keeps between steps.
+
+use super::coning::ConingCorrection;
+use super::segment::{GaussRates, HeldRate, HistoryRate, LinearRate, QuadraticRate, RotationVector};
+use super::InputModel;
+use crate::vec3::all_finite;
+use crate::{DeltaAngle, Error, GyroSample, Real, Vec3};
+
+#[inline(always)]
+fn finite_rate<T: Real>(s: &GyroSample<T>) -> Result<Vec3<T>, Error> {
+    if s.rate.is_finite() {
+        Ok(s.rate)
+    } else {
+        Err(Error::NonFiniteRate)
+    }
+}
+
+/// Each sample's rate held over the `dt` that ends at it (the seed's assumption V1). Exact for a constant
+/// rate, first order on a varying one; keeps no state.
+///
+/// ```
+/// use quatprop::{input::Hold, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, Hold, Off)?;
+/// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f64)), 0.5)?; // 1 rad/s about z for 0.5 s
+/// assert!((p.attitude().z - 0.25_f64.sin()).abs() < 1e-15);
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Hold;
+
+impl<T: Real> InputModel<T> for Hold {
+    type Sample = GyroSample<T>;
+    type Segment = HeldRate<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &GyroSample<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(HeldRate<T>, T)>), Error> {
+        Ok((Hold, Some((HeldRate(finite_rate(sample)?), dt))))
+    }
+    #[inline(always)]
+    fn restart(&mut self) {}
+}
+
+/// The rate linear between the previous sample and this one: second order (the trapezoid rule's error in
+/// `∫ω`), whatever the scheme's order. The first sample only starts the model.
+///
+/// ```
+/// use quatprop::{input::Linear, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, Linear::new(), Off)?;
+/// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 0.0_f64)), 0.5)?; // starts: no step
+/// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 2.0_f64)), 0.5)?; // ramp 0 → 2 rad/s: 0.5 rad
+/// assert_eq!(p.steps(), 1);
+/// assert!((p.attitude().z - 0.25_f64.sin()).abs() < 1e-15);
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Linear<T> {
+    previous: Option<Vec3<T>>,
+}
+
+impl<T: Real> Linear<T> {
+    /// A model that has seen no sample yet.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { previous: None }
+    }
+}
+
+impl<T: Real> InputModel<T> for Linear<T> {
+    type Sample = GyroSample<T>;
+    type Segment = LinearRate<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &GyroSample<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(LinearRate<T>, T)>), Error> {
+        let w = finite_rate(sample)?;
+        let next = Self { previous: Some(w) };
+        Ok((next, self.previous.map(|w0| (LinearRate { w0, w1: w }, dt))))
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        self.previous = None;
+    }
+}
+
+/// The sample history: the cubic through the last four samples ω_{k−2}, ω_{k−1}, ω_k, ω_{k+1}, integrated
+/// over the last interval — fourth order from one gyro sample per step, with no latency (the step ends at
+/// the newest sample). The recommended input for a rate gyro.
+///
+/// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
+/// third a quadratic one (third). The samples must be equally spaced: a sample whose `dt` differs from the
+/// previous one (a refused or dropped sample, a timing change) restarts the history at the last sample,
+/// so that interval is integrated linearly over its true length and the order builds up again.
+///
+/// ```
+/// use quatprop::{input::History, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), Off)?;
+/// for k in 0..5 {
+///     let t = 0.1 * k as f64; // ω_z = t²: the cubic reproduces it exactly
+///     p.push(GyroSample::new(Vec3::new(0.0, 0.0, t * t)), 0.1)?;
+/// }
+/// assert_eq!((p.steps(), p.input().len()), (4, 3));
+/// let angle = 0.4_f64.powi(3) / 3.0; // ∫₀^0.4 t² dt
+/// assert!((p.attitude().z - (0.5 * angle).sin()).abs() < 1e-9);
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct History<T> {
+    /// The three most recent samples, oldest first (the last `count` are valid).
+    w: [Vec3<T>; 3],
+    count: u8,
+    /// The spacing (s) of the kept samples.
+    dt: T,
+}
+
+impl<T: Real> History<T> {
+    /// An empty history.
+    #[must_use]
+    pub fn new() -> Self {
+        Self {
+            w: [Vec3::ZERO; 3],
+            count: 0,
+            dt: T::ZERO,
+        }
+    }
+
+    /// Samples kept (0 to 3).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.count as usize
+    }
+
+    /// `true` before the first sample (and after a restart).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+}
+
+impl<T: Real> InputModel<T> for History<T> {
+    type Sample = GyroSample<T>;
+    type Segment = HistoryRate<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &GyroSample<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(HistoryRate<T>, T)>), Error> {
+        let w = finite_rate(sample)?;
+        // Unequal spacing: keep only the last sample (the step becomes linear over its true length).
+        let count = if self.count > 1 && dt != self.dt {
+            1
+        } else {
+            self.count
+        };
+        let [a, b, c] = self.w;
+        let z = Vec3::ZERO;
+        let segment = match count {
+            0 => None,
+            1 => Some(HistoryRate {
+                w: [z, z, c, w],
+                count: 2,
+            }),
+            2 => Some(HistoryRate {
+                w: [z, b, c, w],
+                count: 3,
+            }),
+            _ => Some(HistoryRate {
+                w: [a, b, c, w],
+                count: 4,
+            }),
+        };
+        let next = Self {
+            w: [b, c, w],
+            count: if count < 3 { count + 1 } else { 3 },
+            dt,
+        };
+        Ok((next, segment.map(|s| (s, dt))))
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        self.count = 0;
+    }
+}
+
+/// A gyro sampled at twice the step rate: each step takes the sample that ended the previous step, a
+/// middle one and an end one, and integrates the quadratic through them (fourth order with
+/// [`crate::scheme::ExpMap`], [`crate::scheme::Magnus4`], [`crate::scheme::Rk4`]). Pass each sample with its
+/// own `dt` (half the step); the middle sample is taken to sit at the middle of the step.
+///
+/// ```
+/// use quatprop::{input::TwiceRate, scheme::Rk4, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, Rk4, TwiceRate::new(), Off)?;
+/// let w = GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f64));
+/// for _ in 0..5 {
+///     p.push(w, 0.01)?; // start, then middle, end, middle, end
+/// }
+/// assert_eq!(p.steps(), 2); // two steps of 0.02 s
+/// assert!((p.attitude().z - 0.02_f64.sin()).abs() < 1e-12);
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TwiceRate<T> {
+    start: Option<Vec3<T>>,
+    middle: Option<(Vec3<T>, T)>,
+}
+
+impl<T: Real> TwiceRate<T> {
+    /// A model that has seen no sample yet.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            start: None,
+            middle: None,
+        }
+    }
+}
+
+impl<T: Real> InputModel<T> for TwiceRate<T> {
+    type Sample = GyroSample<T>;
+    type Segment = QuadraticRate<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &GyroSample<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(QuadraticRate<T>, T)>), Error> {
+        let w = finite_rate(sample)?;
+        Ok(match (self.start, self.middle) {
+            (None, _) => (
+                Self {
+                    start: Some(w),
+                    middle: None,
+                },
+                None,
+            ),
+            (Some(s), None) => (
+                Self {
+                    start: Some(s),
+                    middle: Some((w, dt)),
+                },
+                None,
+            ),
+            (Some(w0), Some((wm, dt_m))) => (
+                Self {
+                    start: Some(w),
+                    middle: None,
+                },
+                Some((QuadraticRate { w0, wm, w1: w }, dt_m + dt)),
+            ),
+        })
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        *self = Self::new();
+    }
+}
+
+/// Rates sampled at the two Gauss–Legendre points `t + (½ ∓ √3/6)h` of each step (a gyro sampled at twice
+/// the step rate with that phase, or rates reconstructed there): fourth order with
+/// [`crate::scheme::Magnus4`], [`crate::scheme::Cf4`] or [`crate::scheme::ExpMap`]. Push the two samples of a
+/// step in order, each with `dt = h/2` (the Gauss weight of each node); the second closes the step.
+///
+/// ```
+/// use quatprop::{input::GaussPoints, scheme::Magnus4, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, Magnus4, GaussPoints::new(), Off)?;
+/// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f64)), 0.05)?; // pending
+/// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 3.0_f64)), 0.05)?; // a step of 0.1 s: 0.2 rad
+/// assert!((p.attitude().z - 0.1_f64.sin()).abs() < 1e-15);
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GaussPoints<T> {
+    first: Option<(Vec3<T>, T)>,
+}
+
+impl<T: Real> GaussPoints<T> {
+    /// A model waiting for the first Gauss sample of a step.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { first: None }
+    }
+}
+
+impl<T: Real> InputModel<T> for GaussPoints<T> {
+    type Sample = GyroSample<T>;
+    type Segment = GaussRates<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &GyroSample<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(GaussRates<T>, T)>), Error> {
+        let w = finite_rate(sample)?;
+        Ok(match self.first {
+            None => (
+                Self {
+                    first: Some((w, dt)),
+                },
+                None,
+            ),
+            Some((w1, dt1)) => (Self::new(), Some((GaussRates { w1, w2: w }, dt1 + dt))),
+        })
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        self.first = None;
+    }
+}
+
+/// Delta angles (integrated-rate sensors): the increments `Δθᵢ` of the sensor's sample intervals are
+/// combined by a [coning correction](super::coning) into the update's rotation vector φ, then
+/// `q ← q ⊗ exp_q(φ)` with an exponential-map scheme (Runge–Kutta schemes see the constant rate `φ/h`).
+/// The update closes when the correction has its increments; `h` is the sum of their `dt`.
+///
+/// ```
+/// use quatprop::input::{coning::TwoSample, DeltaAngles};
+/// use quatprop::{scheme::ExpMap, stabilize::Off, DeltaAngle, Propagator, Quat, Vec3};
+/// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, DeltaAngles::new(TwoSample), Off)?;
+/// let d = DeltaAngle::new(Vec3::new(0.0, 0.0, 0.1_f64));
+/// p.push(d, 0.01)?; // pending
+/// p.push(d, 0.01)?; // update: φ = 0.2 rad about z
+/// assert_eq!(p.steps(), 1);
+/// assert!((p.attitude().z - 0.1_f64.sin()).abs() < 1e-15);
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct DeltaAngles<T, C> {
+    correction: C,
+    pending: [Vec3<T>; 4],
+    count: u8,
+    time: T,
+    previous: Option<Vec3<T>>,
+}
+
+impl<T: Real, C: ConingCorrection> DeltaAngles<T, C> {
+    /// A model with the coning correction `correction` and no increment yet.
+    #[must_use]
+    pub fn new(correction: C) -> Self {
+        Self {
+            correction,
+            pending: [Vec3::ZERO; 4],
+            count: 0,
+            time: T::ZERO,
+            previous: None,
+        }
+    }
+
+    /// The coning correction.
+    #[must_use]
+    pub fn correction(&self) -> C {
+        self.correction
+    }
+}
+
+impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
+    type Sample = DeltaAngle<T>;
+    type Segment = RotationVector<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &DeltaAngle<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
+        let d = sample.angle;
+        if !all_finite(&[d]) {
+            return Err(Error::NonFiniteRate);
+        }
+        let n = self.correction.samples().clamp(1, 5);
+        let k = self.count as usize;
+        let time = self.time + dt;
+        let mut next = *self;
+        if k + 1 < n {
+            if let Some(slot) = next.pending.get_mut(k) {
+                *slot = d;
+            }
+            next.count += 1;
+            next.time = time;
+            return Ok((next, None));
+        }
+        let increments = gather(&self.pending, k, d);
+        let phi = self
+            .correction
+            .rotation_vector(self.previous, increments.get(..k + 1).unwrap_or(&[]));
+        next.count = 0;
+        next.time = T::ZERO;
+        next.previous = Some(d);
+        Ok((next, Some((RotationVector { phi, h: time }, time))))
+    }
+    #[inline(always)]
+    fn restart(&mut self) {
+        self.count = 0;
+        self.time = T::ZERO;
+        self.previous = None;
+    }
+}
+
+/// `[pending[0..k], d, …]`: the update's increments in order, in a fixed array (panic-free).
+#[inline(always)]
+fn gather<T: Real>(pending: &[Vec3<T>; 4], k: usize, d: Vec3<T>) -> [Vec3<T>; 5] {
+    let [a, b, c, e] = *pending;
+    match k {
+        0 => [d, a, b, c, e],
+        1 => [a, d, b, c, e],
+        2 => [a, b, d, c, e],
+        3 => [a, b, c, d, e],
+        _ => [a, b, c, e, d],
+    }
+}
