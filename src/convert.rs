@@ -59,6 +59,13 @@ fn half_angle_quat<T: Real>(angle: T, axis: usize) -> Quat<T> {
 impl<T: Real> Quat<T> {
     /// Rotation by `angle` (rad) about `axis` (any non-zero length; it is normalized).
     /// `None` if the axis is zero or anything is non-finite.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 2.0_f64), 1.0).unwrap();
+    /// assert!((q.w - 0.5_f64.cos()).abs() < 1e-16 && (q.z - 0.5_f64.sin()).abs() < 1e-16);
+    /// assert_eq!(Quat::from_axis_angle(Vec3::new(0.0, 0.0, 0.0_f64), 1.0), None);
+    /// ```
     #[must_use]
     pub fn from_axis_angle(axis: Vec3<T>, angle: T) -> Option<Self> {
         if !angle.is_finite() {
@@ -70,6 +77,13 @@ impl<T: Real> Quat<T> {
     }
 
     /// Unit axis and angle (rad, in [0, π]) of a unit quaternion. The identity gives axis `(1, 0, 0)`, angle 0.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let q = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0_f64), -0.3).unwrap();
+    /// let (axis, angle) = q.to_axis_angle();
+    /// assert!((angle - 0.3).abs() < 1e-15 && (axis.x + 1.0).abs() < 1e-15); // angle ≥ 0, axis flips
+    /// ```
     #[must_use]
     pub fn to_axis_angle(self) -> (Vec3<T>, T) {
         let phi = self.to_rotation_vector();
@@ -82,6 +96,13 @@ impl<T: Real> Quat<T> {
     }
 
     /// Rotation matrix (row-major) with `v_ref = R v_body`. Expects a unit quaternion.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0_f64), core::f64::consts::FRAC_PI_2).unwrap();
+    /// let r = q.to_rotation_matrix(); // body x maps to reference y
+    /// assert!(r[1][0] > 1.0 - 1e-15 && r[0][0].abs() < 1e-15);
+    /// ```
     #[must_use]
     pub fn to_rotation_matrix(self) -> [[T; 3]; 3] {
         let (w, x, y, z) = (self.w, self.x, self.y, self.z);
@@ -109,6 +130,15 @@ impl<T: Real> Quat<T> {
     /// `1 + trace`, `1 + 2R₀₀ − trace`, … is used as the pivot, so no branch loses precision).
     /// `None` if an entry is not finite or `det R ≤ ½` (singular, a reflection, or far from any rotation);
     /// a nearly orthonormal matrix gives the quaternion of a nearby rotation.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let q = Quat::from_axis_angle(Vec3::new(1.0, 2.0, 3.0_f64), 2.5).unwrap();
+    /// let back = Quat::from_rotation_matrix(q.to_rotation_matrix()).unwrap();
+    /// assert!(q.angle_to(back) < 1e-15);
+    /// let mirror = [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0_f64]];
+    /// assert_eq!(Quat::from_rotation_matrix(mirror), None); // a reflection is no rotation
+    /// ```
     #[must_use]
     pub fn from_rotation_matrix(r: [[T; 3]; 3]) -> Option<Self> {
         let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
@@ -168,6 +198,12 @@ impl<T: Real> Quat<T> {
     }
 
     /// Quaternion of aerospace Euler angles (rad): `qz(yaw) ⊗ qy(pitch) ⊗ qx(roll)`.
+    ///
+    /// ```
+    /// use quatprop::{EulerZyx, Quat};
+    /// let q = Quat::from_euler_zyx(EulerZyx { yaw: 0.4_f64, pitch: 0.0, roll: 0.0 });
+    /// assert!((q.z - 0.2_f64.sin()).abs() < 1e-16 && q.x == 0.0 && q.y == 0.0);
+    /// ```
     #[must_use]
     pub fn from_euler_zyx(e: EulerZyx<T>) -> Self {
         half_angle_quat(e.yaw, 2) * half_angle_quat(e.pitch, 1) * half_angle_quat(e.roll, 0)
@@ -179,6 +215,14 @@ impl<T: Real> Quat<T> {
     /// `w ± y = (cos b ± sin b)·cos(a ∓ c)`, `x ∓ z = ±(cos b ± sin b)·sin(c ∓ a)`, so
     /// `pitch = π/2 − 2 atan2(|(w − y, x + z)|, |(w + y, x − z)|)`, `(yaw + roll)/2 = atan2(x + z, w − y)`,
     /// `(yaw − roll)/2 = atan2(z − x, w + y)`: no `asin`, no loss near ±90° pitch.
+    ///
+    /// ```
+    /// use quatprop::{EulerZyx, Quat};
+    /// let e = EulerZyx { yaw: 0.3_f64, pitch: -1.2, roll: 2.9 };
+    /// let back = Quat::from_euler_zyx(e).to_euler_zyx();
+    /// assert!((back.yaw - e.yaw).abs() < 1e-15 && (back.pitch - e.pitch).abs() < 1e-15);
+    /// assert!((back.roll - e.roll).abs() < 1e-14);
+    /// ```
     #[must_use]
     pub fn to_euler_zyx(self) -> EulerZyx<T> {
         let (w, x, y, z) = (self.w, self.x, self.y, self.z);
@@ -197,6 +241,12 @@ impl<T: Real> Quat<T> {
     }
 
     /// Quaternion of classical Z-X-Z Euler angles (rad): `qz(psi) ⊗ qx(theta) ⊗ qz(phi)`.
+    ///
+    /// ```
+    /// use quatprop::{EulerZxz, Quat};
+    /// let q = Quat::from_euler_zxz(EulerZxz { psi: 0.0_f64, theta: 0.5, phi: 0.0 });
+    /// assert!((q.x - 0.25_f64.sin()).abs() < 1e-16 && q.z == 0.0);
+    /// ```
     #[must_use]
     pub fn from_euler_zxz(e: EulerZxz<T>) -> Self {
         half_angle_quat(e.psi, 2) * half_angle_quat(e.theta, 0) * half_angle_quat(e.phi, 2)
@@ -207,6 +257,14 @@ impl<T: Real> Quat<T> {
     /// The components factor as `w = cos(ϑ/2) cos((ψ+φ)/2)`, `z = cos(ϑ/2) sin((ψ+φ)/2)`,
     /// `x = sin(ϑ/2) cos((ψ−φ)/2)`, `y = sin(ϑ/2) sin((ψ−φ)/2)`, so
     /// `ϑ = 2 atan2(|(x, y)|, |(w, z)|)`: accurate at ϑ → 0 and π, unlike `acos(w² − x² − y² + z²)`.
+    ///
+    /// ```
+    /// use quatprop::{EulerZxz, Quat};
+    /// let e = EulerZxz { psi: -2.0_f64, theta: 1e-9, phi: 0.7 }; // nutation near the frame barrier
+    /// let back = Quat::from_euler_zxz(e).to_euler_zxz();
+    /// assert!((back.theta - 1e-9).abs() < 1e-22); // the acos form would lose it entirely
+    /// assert!((back.psi + back.phi - (e.psi + e.phi)).abs() < 1e-15);
+    /// ```
     #[must_use]
     pub fn to_euler_zxz(self) -> EulerZxz<T> {
         let (w, x, y, z) = (self.w, self.x, self.y, self.z);

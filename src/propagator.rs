@@ -154,7 +154,9 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             }
         }
         self.input = input;
-        self.saturated = self.saturated.wrapping_add(u64::from(sample.is_saturated()));
+        self.saturated = self
+            .saturated
+            .wrapping_add(u64::from(sample.is_saturated()));
         Ok(())
     }
 

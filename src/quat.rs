@@ -94,7 +94,7 @@ impl<T: Real> Quat<T> {
     }
 
     /// The seed's normalization error `N = |q|² − 1` (eq. (2)), evaluated with an error far below ε
-    /// (see [`Real::sum_sq_minus_one`]).
+    /// (f32: summed in f64, where the squares are exact; f64: exact squares by `fma`, compensated sum).
     #[must_use]
     pub fn norm_error(self) -> T {
         T::sum_sq_minus_one(self.w, self.x, self.y, self.z)
@@ -162,6 +162,13 @@ impl<T: Real> Quat<T> {
     }
 
     /// Rotates a body-frame vector into the reference frame: `q ⊗ (0, v) ⊗ q*` (for unit `q`).
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let yaw90 = Quat::from_rotation_vector(Vec3::new(0.0, 0.0, core::f64::consts::FRAC_PI_2));
+    /// let v = yaw90.rotate(Vec3::new(1.0, 0.0, 0.0)); // body x is reference y
+    /// assert!((v - Vec3::new(0.0, 1.0, 0.0)).norm() < 1e-15);
+    /// ```
     #[inline]
     #[must_use]
     pub fn rotate(self, v: Vec3<T>) -> Vec3<T> {
@@ -175,6 +182,14 @@ impl<T: Real> Quat<T> {
     ///
     /// Exact for any angle, including beyond π. Small angles use a Taylor branch (no square root, no
     /// trigonometry) that keeps every bit of the rotation: a rotation of 1e-9 rad is 1e-9 rad, not zero.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let q = Quat::from_rotation_vector(Vec3::new(0.0, 1e-9_f32, 0.0));
+    /// assert_eq!(q.y, 5e-10); // kept, where a `|φ| < ε → identity` shortcut would drop it
+    /// let big = Quat::from_rotation_vector(Vec3::new(4.0_f64, 0.0, 0.0)); // beyond π
+    /// assert!((big.w - 2.0_f64.cos()).abs() < 1e-16);
+    /// ```
     #[inline]
     #[must_use]
     pub fn from_rotation_vector(phi: Vec3<T>) -> Self {
@@ -222,6 +237,13 @@ impl<T: Real> Quat<T> {
     ///
     /// Expects a unit quaternion; the result scales with `atan2`, so a slightly non-unit input still
     /// gives the angle of its direction.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let phi = Vec3::new(0.1, -0.2, 0.3_f64);
+    /// let back = Quat::from_rotation_vector(phi).to_rotation_vector();
+    /// assert!((back - phi).norm() < 1e-16);
+    /// ```
     #[must_use]
     pub fn to_rotation_vector(self) -> Vec3<T> {
         let q = if self.w < T::ZERO { -self } else { self };
@@ -234,6 +256,11 @@ impl<T: Real> Quat<T> {
     }
 
     /// Converts each component to `f64`.
+    ///
+    /// ```
+    /// use quatprop::Quat;
+    /// assert_eq!(Quat::new(0.5_f32, 0.1, 0.0, 0.0).to_f64().x, 0.1_f32 as f64); // exact widening
+    /// ```
     #[must_use]
     pub fn to_f64(self) -> Quat<f64> {
         Quat::new(
@@ -245,6 +272,11 @@ impl<T: Real> Quat<T> {
     }
 
     /// Converts each component from `f64` (rounding to nearest for `f32`).
+    ///
+    /// ```
+    /// use quatprop::Quat;
+    /// assert_eq!(Quat::<f32>::from_f64(Quat::new(1.0, 0.1, 0.0, 0.0)).x, 0.1_f32);
+    /// ```
     #[must_use]
     pub fn from_f64(q: Quat<f64>) -> Self {
         Self::new(
@@ -258,6 +290,14 @@ impl<T: Real> Quat<T> {
     /// The rotation angle (rad, in [0, π]) between two attitudes, treating `q` and `−q` as the same.
     ///
     /// Computed as `2 atan2(|vec(a* ⊗ b)|, |scalar(a* ⊗ b)|)`, accurate for tiny and near-π angles.
+    ///
+    /// ```
+    /// use quatprop::{Quat, Vec3};
+    /// let a = Quat::from_rotation_vector(Vec3::new(0.0, 0.0, 0.2_f64));
+    /// let b = Quat::from_rotation_vector(Vec3::new(0.0, 0.0, 0.5_f64));
+    /// assert!((a.angle_to(b) - 0.3).abs() < 1e-15);
+    /// assert_eq!(a.angle_to(-a), 0.0); // q and −q are the same rotation
+    /// ```
     #[must_use]
     pub fn angle_to(self, other: Self) -> T {
         let d = self.conjugate() * other;

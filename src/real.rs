@@ -5,7 +5,7 @@
 //! compiler folds to a constant.
 //!
 //! Math backend: `libm` (correctly rounded `sqrt`; `sin`, `cos`, `atan2` within 1 ulp). On
-//! `thumbv7em-none-eabihf` `libm::sqrtf` is a software routine, not `vsqrt.f32` (see README, "Cost"); the
+//! `thumbv7em-none-eabihf` `libm::sqrtf` is a software routine, not `vsqrt.f32` (see docs/firmware.md); the
 //! step path avoids square roots wherever an algebraic form exists (polynomial RK steps, Taylor branch of
 //! the exponential map, first-order normalization).
 

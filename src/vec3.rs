@@ -81,12 +81,22 @@ impl<T: Real> Vec3<T> {
     }
 
     /// Converts each component to `f64`.
+    ///
+    /// ```
+    /// use quatprop::Vec3;
+    /// assert_eq!(Vec3::new(0.1_f32, 0.0, 0.0).to_f64().x, 0.1_f32 as f64);
+    /// ```
     #[must_use]
     pub fn to_f64(self) -> Vec3<f64> {
         Vec3::new(self.x.to_f64(), self.y.to_f64(), self.z.to_f64())
     }
 
     /// Converts each component from `f64` (rounding to nearest for `f32`).
+    ///
+    /// ```
+    /// use quatprop::Vec3;
+    /// assert_eq!(Vec3::<f32>::from_f64(Vec3::new(0.1, 0.0, 0.0)).x, 0.1_f32);
+    /// ```
     #[must_use]
     pub fn from_f64(v: Vec3<f64>) -> Self {
         Self::new(T::from_f64(v.x), T::from_f64(v.y), T::from_f64(v.z))

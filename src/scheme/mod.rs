@@ -2,7 +2,7 @@
 //! increment. A scheme knows nothing of stabilization (that is [`crate::stabilize`], after the step) or of
 //! how the increment is added ([`crate::accumulate`]).
 //!
-//! | scheme | order | stability bound `h·max|ω|` (rad) | norm factor per step, `x = h·|ω|/2` |
+//! | scheme | order | stability bound `h·max‖ω‖` (rad) | norm factor per step, `x = h·‖ω‖/2` |
 //! |---|---|---|---|
 //! | [`Euler`] | 1 | none; ≤ 2 admitted | `1 + x²` |
 //! | [`Rk2`] | 2 | none; ≤ 2√2 admitted | `1 + x⁴/4` |

@@ -93,7 +93,10 @@ pub(crate) const fn stability_polynomial(
 
 /// Replaces `r_0 … r_order` by the exact `1/m!` that the order conditions imply, so the polynomial carries
 /// no rounding of the tableau's fractions (RK3's `Σb` is 0.9999999999999999 in binary).
-pub(crate) const fn exact_low_order(mut r: [f64; MAX_STAGES + 1], order: u32) -> [f64; MAX_STAGES + 1] {
+pub(crate) const fn exact_low_order(
+    mut r: [f64; MAX_STAGES + 1],
+    order: u32,
+) -> [f64; MAX_STAGES + 1] {
     let mut m = 0;
     let mut factorial = 1.0;
     while m <= order as usize && m <= MAX_STAGES {

@@ -99,7 +99,8 @@ impl ButcherTableau for Rk4 {
 ///
 /// Its stability polynomial is `R = T₅(z) + z⁶/600`, so `|R(ix)|² = 1 − x⁶/1800 + O(x⁸)`: it loses norm like
 /// RK4 (Cash–Karp and Butcher's RK5, with `z⁶` coefficients 1/800 and 1/1280 below 1/720, gain norm near
-/// zero instead). Stable for `h|ω|` up to [`ButcherTableau::STEP_ANGLE_LIMIT`] (≈ 2.0, see the README table).
+/// zero instead). Stable for step angles `h·max|ω|` up to ≈ 1.99 (its `information().step_angle_limit`;
+/// see docs/schemes.md).
 /// Source: Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19–26, Table 2; Hairer, Nørsett, Wanner,
 /// *Solving ODEs I*, Table II.5.2.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
