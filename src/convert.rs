@@ -11,6 +11,7 @@ use crate::{Quat, Real, Vec3};
 /// Aerospace Euler angles, intrinsic Z-Y'-X'' (yaw, then pitch, then roll): `R = Rz(yaw) Ry(pitch) Rx(roll)`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EulerZyx<T> {
     /// Heading about the reference z axis (rad, in (−π, π]).
     pub yaw: T,
@@ -24,6 +25,7 @@ pub struct EulerZyx<T> {
 /// (the seed's precession ψ, nutation ϑ, spin φ; its eq. (5) is `cos ϑ = w² − x² − y² + z²`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EulerZxz<T> {
     /// Precession ψ (rad, in (−π, π]).
     pub psi: T,

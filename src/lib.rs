@@ -16,6 +16,7 @@ mod gauss;
 #[cfg_attr(docsrs, doc(cfg(feature = "embedded-hal")))]
 pub mod gyro;
 pub mod input;
+mod interop;
 mod propagator;
 mod quat;
 mod real;
@@ -26,7 +27,7 @@ mod vec3;
 
 pub use convert::{EulerZxz, EulerZyx};
 pub use error::Error;
-pub use propagator::Propagator;
+pub use propagator::{Propagator, Refused};
 pub use quat::Quat;
 pub use real::Real;
 pub use sample::{DeltaAngle, GyroSample, Sample};

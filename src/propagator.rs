@@ -66,6 +66,32 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer> Propagator<T, S, I,
     }
 }
 
+/// The sample of a burst that was refused, and why ([`Propagator::push_burst`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Refused {
+    /// Index of the refused sample in the burst (= the number of samples integrated before it).
+    pub index: usize,
+    /// Why it was refused.
+    pub error: Error,
+}
+
+impl core::fmt::Display for Refused {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "sample {} of the burst refused: {}",
+            self.index, self.error
+        )
+    }
+}
+
+impl core::error::Error for Refused {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
 fn checked_unit<T: Real>(q0: Quat<T>) -> Result<Quat<T>, Error> {
     if !q0.is_finite() {
         return Err(Error::NonFiniteQuaternion);
@@ -158,6 +184,42 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             .saturated
             .wrapping_add(u64::from(sample.is_saturated()));
         Ok(())
+    }
+
+    /// Pushes a FIFO burst: `samples[i]` arrives `dt` seconds after `samples[i − 1]` (and `samples[0]`
+    /// `dt` after the last sample pushed before). Bit for bit the same as pushing them one at a time;
+    /// allocates nothing. Returns how many were integrated (all of them).
+    ///
+    /// # Errors
+    /// At the first refused sample it stops and returns its index and error ([`Refused`]); the propagator
+    /// is then what it was after the last accepted sample. To go on, push `samples[index + 1..]` with the
+    /// first of them covering the refused interval too (`2·dt` for it, then `dt`).
+    ///
+    /// ```
+    /// use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
+    /// use quatprop::{Error, GyroSample, Propagator, Quat, Refused, Vec3};
+    /// let w = GyroSample::new(Vec3::new(0.1, -0.2, 0.3_f32));
+    /// let mut burst = [w; 32];
+    /// let mut one_by_one = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
+    /// let mut p = one_by_one;
+    /// assert_eq!(p.push_burst(&burst, 1e-3), Ok(32));
+    /// for s in burst {
+    ///     one_by_one.push(s, 1e-3)?;
+    /// }
+    /// assert_eq!(p, one_by_one); // bit for bit
+    /// burst[5].rate.y = f32::INFINITY;
+    /// let err = p.push_burst(&burst, 1e-3);
+    /// assert_eq!(err, Err(Refused { index: 5, error: Error::NonFiniteRate }));
+    /// assert_eq!(p.steps(), 32 - 1 + 5); // the first sample only started the history
+    /// # Ok::<(), Error>(())
+    /// ```
+    pub fn push_burst(&mut self, samples: &[I::Sample], dt: T) -> Result<usize, Refused> {
+        for (index, sample) in samples.iter().enumerate() {
+            if let Err(error) = self.push(*sample, dt) {
+                return Err(Refused { index, error });
+            }
+        }
+        Ok(samples.len())
     }
 
     /// Forgets the samples the input model keeps between steps (after a gap in the data: the next sample

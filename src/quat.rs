@@ -12,6 +12,7 @@ use core::ops::{Add, Mul, Neg, Sub};
 /// A quaternion `w + x i + y j + z k` (scalar first, Hamilton convention).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Quat<T> {
     /// Scalar part.
     pub w: T,

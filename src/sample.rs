@@ -25,6 +25,7 @@ pub trait Sample: Copy {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GyroSample<T> {
     /// Body-frame rate (rad/s).
     pub rate: Vec3<T>,
@@ -72,6 +73,7 @@ impl<T: Copy> Sample for GyroSample<T> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DeltaAngle<T> {
     /// Angle increment (rad, body frame).
     pub angle: Vec3<T>,

@@ -6,6 +6,7 @@ use core::ops::{Add, AddAssign, Mul, Neg, Sub};
 /// A 3-vector `(x, y, z)`. Rates are body-frame rad/s; rotation vectors are rad.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Vec3<T> {
     /// First component.
     pub x: T,
