@@ -49,6 +49,15 @@ pub enum Error {
     InvalidStabilizer,
     /// A Baumgarte gain `k` is negative or not finite.
     InvalidGain,
+    /// An alignment matrix is not a rotation (within
+    /// [`crate::frontend::ROTATION_TOLERANCE`]: not orthonormal, a reflection, or not finite).
+    NotARotation,
+    /// A timestamp does not advance: a duplicate, or one behind the previous timestamp.
+    TimestampNotIncreasing,
+    /// A clock's counter width is outside 1–32 bits.
+    InvalidClock,
+    /// A bias estimator's window or memory is zero, or its stillness gate is not finite and positive.
+    InvalidEstimator,
     /// The step produced a non-finite attitude (arithmetic overflow); the step was discarded.
     NonFiniteResult,
 }
@@ -71,6 +80,14 @@ impl fmt::Display for Error {
             Error::NonFiniteQuaternion => f.write_str("quaternion is NaN or infinite"),
             Error::InvalidStabilizer => f.write_str("invalid stabilizer: Every(0)"),
             Error::InvalidGain => f.write_str("Baumgarte gain k is negative or not finite"),
+            Error::NotARotation => f.write_str("alignment matrix is not a rotation"),
+            Error::TimestampNotIncreasing => {
+                f.write_str("timestamp does not advance (duplicate or backwards)")
+            }
+            Error::InvalidClock => f.write_str("clock counter width must be 1 to 32 bits"),
+            Error::InvalidEstimator => f.write_str(
+                "bias estimator: window and memory must be positive, the gate finite and positive",
+            ),
             Error::NonFiniteResult => f.write_str("step overflowed to a non-finite attitude"),
         }
     }

@@ -11,6 +11,8 @@ pub mod accumulate;
 mod convert;
 mod dispatch;
 mod error;
+mod exact;
+pub mod frontend;
 mod gauss;
 #[cfg(feature = "embedded-hal")]
 #[cfg_attr(docsrs, doc(cfg(feature = "embedded-hal")))]

@@ -37,6 +37,8 @@ pub(crate) mod sealed {
         /// `w² + x² + y² + z² − 1` with its own rounding error far below ε (`f32`: in `f64`, where the
         /// squares are exact; `f64`: compensated with `fma`). Telemetry only, never on the step path.
         fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
+        /// Converts an integer (rounds to nearest beyond 2²⁴ for `f32`): one instruction with an FPU.
+        fn from_i32(v: i32) -> Self;
     }
 }
 
@@ -122,6 +124,10 @@ macro_rules! impl_real {
             #[inline]
             fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self {
                 $sum_sq(w, x, y, z)
+            }
+            #[inline(always)]
+            fn from_i32(v: i32) -> Self {
+                v as $t
             }
         }
 
@@ -253,6 +259,7 @@ fn sum_sq_minus_one_f64(w: f64, x: f64, y: f64, z: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use super::sealed::Float;
     use super::*;
 
     #[test]

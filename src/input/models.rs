@@ -97,8 +97,9 @@ impl<T: Real> InputModel<T> for Linear<T> {
 ///
 /// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
 /// third a quadratic one (third). The samples must be equally spaced: a sample whose `dt` differs from the
-/// previous one (a refused or dropped sample, a timing change) restarts the history at the last sample,
-/// so that interval is integrated linearly over its true length and the order builds up again.
+/// previous one by more than [`History::SPACING_TOLERANCE`] (a refused or dropped sample, a timing change)
+/// restarts the history at the last sample, so that interval is integrated linearly over its true length
+/// and the order builds up again.
 ///
 /// ```
 /// use quatprop::{input::History, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
@@ -126,6 +127,13 @@ pub struct History<T> {
 }
 
 impl<T: Real> History<T> {
+    /// The relative change of `dt` (2⁻¹⁰) beyond which the spacing counts as changed and the history
+    /// restarts. An exact time base ([`crate::frontend::FixedPeriod`]) varies `dt` by one ulp, far inside
+    /// it; a dropped sample doubles `dt`, far outside. Under sampling jitter beyond it every step is linear
+    /// over its true interval: the cubic with misplaced nodes would err by about `0.15·h²·|ω'|·jitter`,
+    /// more than the trapezoid's `h³|ω''|/12` unless `h·Ω` is large.
+    pub const SPACING_TOLERANCE: f64 = 1.0 / 1024.0;
+
     /// An empty history.
     #[must_use]
     pub fn new() -> Self {
@@ -159,8 +167,9 @@ impl<T: Real> InputModel<T> for History<T> {
         dt: T,
     ) -> Result<(Self, Option<(HistoryRate<T>, T)>), Error> {
         let w = finite_rate(sample)?;
-        // Unequal spacing: keep only the last sample (the step becomes linear over its true length).
-        let count = if self.count > 1 && dt != self.dt {
+        // Spacing changed: keep only the last sample (the step becomes linear over its true length).
+        let tolerance = self.dt * T::from_f64(Self::SPACING_TOLERANCE);
+        let count = if self.count > 1 && (dt - self.dt).abs() > tolerance {
             1
         } else {
             self.count

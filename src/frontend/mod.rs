@@ -1,0 +1,47 @@
+//! The sensor front end: from what a gyro driver delivers to body rates on an exact time base. Each piece
+//! is optional and independent; a firmware links only what it names.
+//!
+//! | piece | turns | into |
+//! |---|---|---|
+//! | [`CountScale`] | raw counts `[i16; 3]` | a [`GyroSample`] in rad/s, flagged `saturated` at a rail |
+//! | [`Alignment`] | a sample in sensor axes | the same sample in body axes (one of the 24 [`AxisRemap`]s, or a rotation matrix) |
+//! | [`FixedBias`], [`BiasEstimator`] | a biased sample | the sample minus the bias (fixed, or learned while the body is still) |
+//! | [`FixedPeriod`] | a sample period given once | the `dt` of each sample, summing to `k·period` exactly |
+//! | [`TickClock`] | the sensor's own timestamps (integer ticks, wrapping) | the `dt` of each sample, exact, with gaps counted |
+//!
+//! ```
+//! use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
+//! use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder, Propagator, Quat};
+//! let scale = CountScale::<f32>::full_scale_dps(2000.0);   // ±2000 °/s on 16 bits
+//! let to_body = AxisRemap::PyNxPz;                          // body x = sensor y, body y = −sensor x
+//! let mut bias = BiasEstimator::<f32>::new(1000, 0.05)?;   // 1 s windows at 1 kHz, 0.05 rad/s gate
+//! let mut period = FixedPeriod::<f32>::new(1.0e-3)?;      // 1 kHz, kept exactly
+//! let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
+//! let mut learned_at = Quat::IDENTITY;
+//! for k in 0..3000 {
+//!     let counts = [12_i16, -3, 7]; // a still sensor with a bias of 0.015 rad/s
+//!     let s = bias.update(to_body.apply(scale.sample(counts)))?;
+//!     p.push(s, period.next_dt())?;
+//!     if k == 1002 {
+//!         learned_at = p.attitude(); // the history's last 4 samples are all corrected now
+//!     }
+//! }
+//! assert!(bias.is_learned());
+//! // The first second integrated the bias (0.015 rad); once learned, nothing more goes in.
+//! assert!(learned_at.angle_to(Quat::IDENTITY) > 0.015);
+//! assert!(p.attitude().angle_to(learned_at) < 1e-6);
+//! # Ok::<(), quatprop::Error>(())
+//! ```
+
+mod alignment;
+mod bias;
+mod scale;
+mod time;
+
+pub use alignment::{Alignment, AxisRemap, ROTATION_TOLERANCE};
+pub use bias::{BiasEstimator, FixedBias};
+pub use scale::CountScale;
+pub use time::{FixedPeriod, TickClock};
+
+#[cfg(doc)]
+use crate::GyroSample;

@@ -1,0 +1,186 @@
+//! Time bases: the `dt` of each sample, exact over any number of samples.
+//!
+//! In f32 a period such as 1 ms is not representable: `f32(0.001) = 0.001 + 4.75e-11`, a relative error of
+//! 4.75e-8 that a propagator fed the same rounded `dt` every step turns into 4.75e-3 rad after 10⁸ steps at
+//! 1 rad/s, whatever its arithmetic. Both time bases here keep the period as a pair `hi + lo` (`hi` the
+//! rounded period, `lo` its rounding error, both in `T`) and carry the part of the exact time that each
+//! rounded `dt` leaves out into the next one: the `dt`s handed out sum to the exact elapsed time within half
+//! an ulp of one `dt`, at every sample.
+
+use crate::exact::{two_product, two_sum};
+use crate::{Error, Real};
+
+fn split_period<T: Real>(period: f64) -> Result<(T, T), Error> {
+    if !period.is_finite() {
+        return Err(Error::NonFiniteStep);
+    }
+    if !(period > 0.0) {
+        return Err(Error::NonPositiveStep);
+    }
+    let hi = T::from_f64(period);
+    let lo = T::from_f64(period - hi.to_f64());
+    if !(hi > T::ZERO && hi <= T::MAX) {
+        // The period underflows or overflows T.
+        return Err(Error::NonPositiveStep);
+    }
+    Ok((hi, lo))
+}
+
+/// A fixed sample period, given once (in `f64`) and kept exactly: each [`FixedPeriod::next_dt`] is the
+/// rounded period plus the carried remainder, so `Σ dt` after k samples equals `k·period` within half an
+/// ulp of `dt` (not `k` roundings of it).
+///
+/// ```
+/// use quatprop::frontend::FixedPeriod;
+/// let mut p = FixedPeriod::<f32>::new(1.0e-3)?;
+/// let (mut exact, mut naive) = (0.0_f64, 0.0_f64);
+/// for _ in 0..1_000_000 {
+///     exact += p.next_dt() as f64; // the dt handed out, summed without further rounding
+///     naive += 1.0e-3_f32 as f64;
+/// }
+/// assert!((exact - 1000.0).abs() < 1e-10); // 1000 s to within half an ulp of 1 ms
+/// assert!((naive - 1000.0).abs() > 4e-5); // f32(0.001) is 4.75e-8 relative off
+/// # Ok::<(), quatprop::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FixedPeriod<T> {
+    hi: T,
+    lo: T,
+    carry: T,
+}
+
+impl<T: Real> FixedPeriod<T> {
+    /// The sample period (s).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteStep`] for a NaN or infinite period, [`Error::NonPositiveStep`] for a zero or
+    /// negative one (or one that underflows `T`).
+    pub fn new(period: f64) -> Result<Self, Error> {
+        let (hi, lo) = split_period(period)?;
+        Ok(Self {
+            hi,
+            lo,
+            carry: T::ZERO,
+        })
+    }
+
+    /// The period rounded to `T` (s).
+    #[must_use]
+    pub fn period(&self) -> T {
+        self.hi
+    }
+
+    /// The `dt` (s) of the next sample: within one ulp of the period, and summing exactly.
+    #[inline]
+    pub fn next_dt(&mut self) -> T {
+        let e = self.carry + self.lo;
+        let dt = self.hi + e;
+        // dt − hi is exact (Sterbenz: dt is within an ulp of hi), and so is e − (dt − hi).
+        self.carry = e - (dt - self.hi);
+        dt
+    }
+}
+
+/// The sensor's own clock: per-sample timestamps in integer ticks of a clock of known frequency, wrapping
+/// at 2³² (a 32-bit counter; a narrower counter's timestamps are its value, wrapping at its own width:
+/// give that width). `dt` is the tick count since the previous timestamp times the tick period, exact in
+/// the same carried sense as [`FixedPeriod`].
+///
+/// A timestamp that does not advance (a duplicate) or goes backwards (a wrapped difference beyond half the
+/// counter's range) is refused with a typed error and leaves the clock unchanged. A jump of more than
+/// 1.5 times the previous interval is counted as a gap ([`TickClock::gaps`]) and integrated honestly over
+/// its true length; the sample history then restarts by itself (its spacing changed).
+///
+/// ```
+/// use quatprop::frontend::TickClock;
+/// use quatprop::Error;
+/// let mut clock = TickClock::<f32>::new(1.0e6, 32)?; // 1 MHz ticks, 32-bit counter
+/// assert_eq!(clock.dt(u32::MAX - 499)?, None); // the first timestamp only starts the clock
+/// let dt = clock.dt(500)?.unwrap(); // wrapped: 1000 ticks later
+/// assert!((dt - 1.0e-3).abs() < 1e-10);
+/// assert_eq!(clock.dt(500), Err(Error::TimestampNotIncreasing)); // duplicate
+/// assert_eq!(clock.dt(400), Err(Error::TimestampNotIncreasing)); // backwards
+/// assert!(clock.dt(3500)?.is_some()); // 3 ms: a gap
+/// assert_eq!(clock.gaps(), 1);
+/// # Ok::<(), Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TickClock<T> {
+    hi: T,
+    lo: T,
+    carry: T,
+    mask: u32,
+    last: Option<u32>,
+    previous_ticks: u32,
+    gaps: u32,
+}
+
+impl<T: Real> TickClock<T> {
+    /// A clock of `frequency` ticks per second whose counter is `bits` wide (1 to 32).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteStep`] / [`Error::NonPositiveStep`] for a frequency that is not finite and positive;
+    /// [`Error::InvalidClock`] for a width outside 1–32.
+    pub fn new(frequency: f64, bits: u32) -> Result<Self, Error> {
+        if !(1..=32).contains(&bits) {
+            return Err(Error::InvalidClock);
+        }
+        let (hi, lo) = split_period(1.0 / frequency)?;
+        Ok(Self {
+            hi,
+            lo,
+            carry: T::ZERO,
+            mask: if bits == 32 {
+                u32::MAX
+            } else {
+                (1u32 << bits) - 1
+            },
+            last: None,
+            previous_ticks: 0,
+            gaps: 0,
+        })
+    }
+
+    /// Gaps seen so far: intervals longer than 1.5 times the previous one.
+    #[must_use]
+    pub fn gaps(&self) -> u32 {
+        self.gaps
+    }
+
+    /// Forgets the last timestamp (after the sensor was reset): the next one only starts the clock.
+    pub fn restart(&mut self) {
+        self.last = None;
+        self.previous_ticks = 0;
+        self.carry = T::ZERO;
+    }
+
+    /// The `dt` (s) from the previous timestamp to `timestamp` (ticks), or `None` for the first one.
+    ///
+    /// # Errors
+    /// [`Error::TimestampNotIncreasing`] for a duplicate or a timestamp behind the previous one; the clock is
+    /// then unchanged.
+    pub fn dt(&mut self, timestamp: u32) -> Result<Option<T>, Error> {
+        let timestamp = timestamp & self.mask;
+        let Some(last) = self.last else {
+            self.last = Some(timestamp);
+            return Ok(None);
+        };
+        let ticks = timestamp.wrapping_sub(last) & self.mask;
+        if ticks == 0 || ticks > self.mask / 2 {
+            return Err(Error::TimestampNotIncreasing);
+        }
+        // n·(hi + lo) + carry, with n·hi split exactly (n is exact in T below 2^24 ticks for f32).
+        let n = T::from_i32(ticks.min(i32::MAX as u32) as i32);
+        let (p, p_err) = two_product(n, self.hi);
+        let (dt, s_err) = two_sum(p, p_err + n * self.lo + self.carry);
+        self.carry = s_err;
+        if self.previous_ticks != 0 && u64::from(ticks) * 2 > u64::from(self.previous_ticks) * 3 {
+            self.gaps = self.gaps.saturating_add(1);
+        }
+        self.previous_ticks = ticks;
+        self.last = Some(timestamp);
+        Ok(Some(dt))
+    }
+}
