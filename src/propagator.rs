@@ -2,6 +2,7 @@
 //! sensor sample at a time. Data flows one way: sample → input model → scheme → accumulator → stabilizer.
 
 use crate::accumulate::{Accumulator, Plain};
+use crate::frontend::TickClock;
 use crate::input::InputModel;
 use crate::sample::Sample;
 use crate::scheme::Scheme;
@@ -218,6 +219,53 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             if let Err(error) = self.push(*sample, dt) {
                 return Err(Refused { index, error });
             }
+        }
+        Ok(samples.len())
+    }
+
+    /// Pushes a FIFO burst of samples with the sensor's own timestamps (ticks of `clock`, see
+    /// [`TickClock`]): each sample's `dt` is the exact time since the last *accepted* sample. The very
+    /// first timestamp of a stream starts the clock, and its sample starts the input model
+    /// ([`InputModel::start`]). Bit for bit the same as pushing the samples one at a time with those `dt`s.
+    ///
+    /// # Errors
+    /// At the first refused sample (a bad sample, or a timestamp that does not advance:
+    /// [`Error::TimestampNotIncreasing`]) it stops and returns its index and error; the propagator and the
+    /// clock are then what they were after the last accepted sample, so the next sample's `dt` covers the
+    /// refused interval too.
+    ///
+    /// ```
+    /// use quatprop::{frontend::TickClock, input::History, scheme::ExpMap, stabilize::FirstOrder};
+    /// use quatprop::{Error, GyroSample, Propagator, Quat, Refused, Vec3};
+    /// let mut clock = TickClock::<f32>::new(1.0e6, 32)?; // 1 µs ticks
+    /// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
+    /// let w = GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f32));
+    /// let fifo = [(w, 0_u32), (w, 1000), (w, 2000), (w, 2000), (w, 4000)];
+    /// let r = p.push_burst_timed(&fifo, &mut clock);
+    /// assert_eq!(r, Err(Refused { index: 3, error: Error::TimestampNotIncreasing }));
+    /// assert_eq!(p.push_burst_timed(&fifo[4..], &mut clock), Ok(1)); // covers 2000 → 4000
+    /// let yaw = 2.0 * p.attitude().z.atan2(p.attitude().w); // 4 ms at 1 rad/s
+    /// assert!((yaw - 4.0e-3).abs() < 4.0 * f32::EPSILON * 4.0e-3, "{yaw}");
+    /// # Ok::<(), Error>(())
+    /// ```
+    pub fn push_burst_timed(
+        &mut self,
+        samples: &[(I::Sample, u32)],
+        clock: &mut TickClock<T>,
+    ) -> Result<usize, Refused> {
+        for (index, (sample, timestamp)) in samples.iter().enumerate() {
+            let refused = |error| Refused { index, error };
+            let (next, dt) = clock.advance(*timestamp).map_err(refused)?;
+            match dt {
+                Some(dt) => self.push(*sample, dt).map_err(refused)?,
+                None => {
+                    self.input = self.input.start(sample).map_err(refused)?;
+                    self.saturated = self
+                        .saturated
+                        .wrapping_add(u64::from(sample.is_saturated()));
+                }
+            }
+            *clock = next;
         }
         Ok(samples.len())
     }

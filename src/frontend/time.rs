@@ -162,10 +162,23 @@ impl<T: Real> TickClock<T> {
     /// [`Error::TimestampNotIncreasing`] for a duplicate or a timestamp behind the previous one; the clock is
     /// then unchanged.
     pub fn dt(&mut self, timestamp: u32) -> Result<Option<T>, Error> {
+        let (next, dt) = self.advance(timestamp)?;
+        *self = next;
+        Ok(dt)
+    }
+
+    /// [`TickClock::dt`] without changing the clock: the clock after `timestamp`, and the `dt`. Commit the
+    /// returned clock only when the sample is accepted, so that a refused sample's interval carries into
+    /// the next one ([`crate::Propagator::push_burst_timed`] does).
+    ///
+    /// # Errors
+    /// As [`TickClock::dt`].
+    pub fn advance(&self, timestamp: u32) -> Result<(Self, Option<T>), Error> {
         let timestamp = timestamp & self.mask;
+        let mut next = *self;
+        next.last = Some(timestamp);
         let Some(last) = self.last else {
-            self.last = Some(timestamp);
-            return Ok(None);
+            return Ok((next, None));
         };
         let ticks = timestamp.wrapping_sub(last) & self.mask;
         if ticks == 0 || ticks > self.mask / 2 {
@@ -175,12 +188,11 @@ impl<T: Real> TickClock<T> {
         let n = T::from_i32(ticks.min(i32::MAX as u32) as i32);
         let (p, p_err) = two_product(n, self.hi);
         let (dt, s_err) = two_sum(p, p_err + n * self.lo + self.carry);
-        self.carry = s_err;
+        next.carry = s_err;
         if self.previous_ticks != 0 && u64::from(ticks) * 2 > u64::from(self.previous_ticks) * 3 {
-            self.gaps = self.gaps.saturating_add(1);
+            next.gaps = self.gaps.saturating_add(1);
         }
-        self.previous_ticks = ticks;
-        self.last = Some(timestamp);
-        Ok(Some(dt))
+        next.previous_ticks = ticks;
+        Ok((next, Some(dt)))
     }
 }

@@ -84,6 +84,22 @@ pub trait InputModel<T: Real>: Copy {
         dt: T,
     ) -> Result<(Self, Option<(Self::Segment, T)>), Error>;
 
+    /// Takes the first sample of a stream, which sets its time origin (there is no `dt` before it): a
+    /// restarted model that keeps the sample as the start of its next step where it can (`Linear`,
+    /// `History`, `TwiceRate`); models that need the sample's interval (`Hold`, `GaussPoints`,
+    /// `DeltaAngles`) only restart.
+    ///
+    /// The default restarts and keeps nothing (the sample is not used).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] if the sample has a NaN or infinite component (the built-in models).
+    fn start(&self, sample: &Self::Sample) -> Result<Self, Error> {
+        let _ = sample;
+        let mut next = *self;
+        next.restart();
+        Ok(next)
+    }
+
     /// Forgets every sample kept between steps: the next sample starts the model afresh (after a gap).
     fn restart(&mut self);
 }

@@ -43,6 +43,10 @@ impl<T: Real> InputModel<T> for Hold {
         Ok((Hold, Some((HeldRate(finite_rate(sample)?), dt))))
     }
     #[inline(always)]
+    fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
+        finite_rate(sample).map(|_| Hold)
+    }
+    #[inline(always)]
     fn restart(&mut self) {}
 }
 
@@ -84,6 +88,12 @@ impl<T: Real> InputModel<T> for Linear<T> {
         let w = finite_rate(sample)?;
         let next = Self { previous: Some(w) };
         Ok((next, self.previous.map(|w0| (LinearRate { w0, w1: w }, dt))))
+    }
+    #[inline(always)]
+    fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
+        Ok(Self {
+            previous: Some(finite_rate(sample)?),
+        })
     }
     #[inline(always)]
     fn restart(&mut self) {
@@ -199,6 +209,15 @@ impl<T: Real> InputModel<T> for History<T> {
         Ok((next, segment.map(|s| (s, dt))))
     }
     #[inline(always)]
+    fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
+        let w = finite_rate(sample)?;
+        Ok(Self {
+            w: [Vec3::ZERO, Vec3::ZERO, w],
+            count: 1,
+            dt: T::ZERO,
+        })
+    }
+    #[inline(always)]
     fn restart(&mut self) {
         self.count = 0;
     }
@@ -274,6 +293,13 @@ impl<T: Real> InputModel<T> for TwiceRate<T> {
         })
     }
     #[inline(always)]
+    fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
+        Ok(Self {
+            start: Some(finite_rate(sample)?),
+            middle: None,
+        })
+    }
+    #[inline(always)]
     fn restart(&mut self) {
         *self = Self::new();
     }
@@ -325,6 +351,10 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
             ),
             Some((w1, dt1)) => (Self::new(), Some((GaussRates { w1, w2: w }, dt1 + dt))),
         })
+    }
+    #[inline(always)]
+    fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
+        finite_rate(sample).map(|_| Self::new())
     }
     #[inline(always)]
     fn restart(&mut self) {
@@ -411,6 +441,15 @@ impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
         next.time = T::ZERO;
         next.previous = Some(d);
         Ok((next, Some((RotationVector { phi, h: time }, time))))
+    }
+    #[inline(always)]
+    fn start(&self, sample: &DeltaAngle<T>) -> Result<Self, Error> {
+        if !all_finite(&[sample.angle]) {
+            return Err(Error::NonFiniteRate);
+        }
+        let mut next = *self;
+        next.restart();
+        Ok(next)
     }
     #[inline(always)]
     fn restart(&mut self) {
