@@ -2,7 +2,7 @@
 //! sensor sample at a time. Data flows one way: sample → input model → scheme → accumulator → stabilizer.
 
 use crate::accumulate::{Accumulator, Plain};
-use crate::frontend::TickClock;
+use crate::frontend::{FixedPeriod, TickClock};
 use crate::input::InputModel;
 use crate::sample::Sample;
 use crate::scheme::Scheme;
@@ -187,36 +187,40 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         Ok(())
     }
 
-    /// Pushes a FIFO burst: `samples[i]` arrives `dt` seconds after `samples[i − 1]` (and `samples[0]`
-    /// `dt` after the last sample pushed before). Bit for bit the same as pushing them one at a time;
-    /// allocates nothing. Returns how many were integrated (all of them).
+    /// Pushes a FIFO burst of samples taken at a fixed period: each sample's `dt` is
+    /// [`FixedPeriod::next_dt`], so time is exact over any number of bursts. Bit for bit the same as
+    /// `push(sample, period.next_dt())` one sample at a time; allocates nothing. Returns how many were
+    /// integrated (all of them).
     ///
     /// # Errors
-    /// At the first refused sample it stops and returns its index and error ([`Refused`]); the propagator
-    /// is then what it was after the last accepted sample. To go on, push `samples[index + 1..]` with the
-    /// first of them covering the refused interval too (`2·dt` for it, then `dt`).
+    /// At the first refused sample it stops and returns its index and error ([`Refused`]). The propagator is
+    /// then what it was after the last accepted sample, and the refused sample's interval has been given
+    /// back to `period` ([`FixedPeriod::carry_over`]): push `samples[index + 1..]` next and it is covered.
     ///
     /// ```
-    /// use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
+    /// use quatprop::{frontend::FixedPeriod, input::History, scheme::ExpMap, stabilize::FirstOrder};
     /// use quatprop::{Error, GyroSample, Propagator, Quat, Refused, Vec3};
-    /// let w = GyroSample::new(Vec3::new(0.1, -0.2, 0.3_f32));
+    /// let w = GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f32));
     /// let mut burst = [w; 32];
-    /// let mut one_by_one = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
-    /// let mut p = one_by_one;
-    /// assert_eq!(p.push_burst(&burst, 1e-3), Ok(32));
-    /// for s in burst {
-    ///     one_by_one.push(s, 1e-3)?;
-    /// }
-    /// assert_eq!(p, one_by_one); // bit for bit
     /// burst[5].rate.y = f32::INFINITY;
-    /// let err = p.push_burst(&burst, 1e-3);
-    /// assert_eq!(err, Err(Refused { index: 5, error: Error::NonFiniteRate }));
-    /// assert_eq!(p.steps(), 32 - 1 + 5); // the first sample only started the history
+    /// let mut period = FixedPeriod::new(1.0e-3)?;
+    /// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
+    /// let r = p.push_burst(&burst, &mut period);
+    /// assert_eq!(r, Err(Refused { index: 5, error: Error::NonFiniteRate }));
+    /// assert_eq!(p.push_burst(&burst[6..], &mut period), Ok(26));
+    /// let yaw = 2.0 * p.attitude().z.atan2(p.attitude().w);
+    /// assert!((yaw - 31.0e-3).abs() < 1e-8, "{yaw}"); // 31 intervals after the first sample
     /// # Ok::<(), Error>(())
     /// ```
-    pub fn push_burst(&mut self, samples: &[I::Sample], dt: T) -> Result<usize, Refused> {
+    pub fn push_burst(
+        &mut self,
+        samples: &[I::Sample],
+        period: &mut FixedPeriod<T>,
+    ) -> Result<usize, Refused> {
         for (index, sample) in samples.iter().enumerate() {
+            let dt = period.next_dt();
             if let Err(error) = self.push(*sample, dt) {
+                period.carry_over(dt);
                 return Err(Refused { index, error });
             }
         }

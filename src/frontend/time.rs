@@ -71,12 +71,29 @@ impl<T: Real> FixedPeriod<T> {
         self.hi
     }
 
-    /// The `dt` (s) of the next sample: within one ulp of the period, and summing exactly.
+    /// Gives back a `dt` this time base handed out for a sample that was refused: the interval goes into
+    /// the next [`FixedPeriod::next_dt`], so no time is lost (exact but for half an ulp of `dt` per call).
+    ///
+    /// ```
+    /// use quatprop::frontend::FixedPeriod;
+    /// let mut p = FixedPeriod::<f64>::new(0.25)?;
+    /// let dt = p.next_dt();
+    /// p.carry_over(dt); // that sample was refused
+    /// assert_eq!(p.next_dt(), 0.5); // the next one covers both periods
+    /// # Ok::<(), quatprop::Error>(())
+    /// ```
+    #[inline]
+    pub fn carry_over(&mut self, dt: T) {
+        self.carry = self.carry + dt;
+    }
+
+    /// The `dt` (s) of the next sample: the period (plus any interval given back by
+    /// [`FixedPeriod::carry_over`]), rounded so that the `dt`s sum to the exact elapsed time.
     #[inline]
     pub fn next_dt(&mut self) -> T {
         let e = self.carry + self.lo;
         let dt = self.hi + e;
-        // dt − hi is exact (Sterbenz: dt is within an ulp of hi), and so is e − (dt − hi).
+        // dt − hi is exact (Sterbenz: hi ≤ dt ≤ 2hi, or dt within an ulp of hi), and so is e − (dt − hi).
         self.carry = e - (dt - self.hi);
         dt
     }
