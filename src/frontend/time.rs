@@ -84,7 +84,7 @@ impl<T: Real> FixedPeriod<T> {
     /// ```
     #[inline]
     pub fn carry_over(&mut self, dt: T) {
-        self.carry = self.carry + dt;
+        self.carry += dt;
     }
 
     /// The `dt` (s) of the next sample: the period (plus any interval given back by
