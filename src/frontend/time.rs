@@ -144,6 +144,12 @@ impl<T: Real> TickClock<T> {
         if !(1..=32).contains(&bits) {
             return Err(Error::InvalidClock);
         }
+        if !frequency.is_finite() {
+            return Err(Error::NonFiniteStep);
+        }
+        if !(frequency > 0.0) {
+            return Err(Error::NonPositiveStep);
+        }
         let (hi, lo) = split_period(1.0 / frequency)?;
         Ok(Self {
             hi,

@@ -1,0 +1,293 @@
+//! The sensor front end and the burst paths: exact time, wraparound, refusals that leave the state as it
+//! was, bursts bit for bit equal to one sample at a time, and what the bias estimator learns and refuses.
+
+use quatprop::accumulate::Kahan;
+use quatprop::frontend::{BiasEstimator, CountScale, FixedPeriod, TickClock};
+use quatprop::input::{GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::scheme::{ExpMap, Rk4};
+use quatprop::stabilize::FirstOrder;
+use quatprop::{Error, GyroSample, Propagator, Quat, Refused, Vec3};
+
+/// A deterministic coning-like rate stream with a few bad samples.
+fn stream(n: usize, bad: &[usize]) -> Vec<GyroSample<f32>> {
+    (0..n)
+        .map(|k| {
+            let t = k as f32 * 1e-3;
+            let mut s = GyroSample::new(Vec3::new(
+                0.9 * (7.1 * t).sin(),
+                0.9 * (7.1 * t).cos(),
+                -0.3,
+            ));
+            if bad.contains(&k) {
+                s.rate.x = f32::NAN;
+            }
+            s.saturated = k % 97 == 0;
+            s
+        })
+        .collect()
+}
+
+/// `push_burst` over refusals equals pushing one at a time with the same time base, bit for bit.
+fn burst_equals_one_at_a_time<
+    I: InputModel<f32, Sample = GyroSample<f32>> + PartialEq + core::fmt::Debug,
+>(
+    input: I,
+) {
+    let samples = stream(3000, &[17, 18, 1500, 2999]);
+    let mut a = Propagator::new(Quat::IDENTITY, ExpMap, input, FirstOrder).unwrap();
+    let mut b = a;
+    let (mut pa, mut pb) = (
+        FixedPeriod::new(1e-3).unwrap(),
+        FixedPeriod::new(1e-3).unwrap(),
+    );
+    // a: bursts of 32, resumed after each refusal.
+    let mut refusals = 0;
+    for chunk in samples.chunks(32) {
+        let mut rest = chunk;
+        while let Err(Refused { index, error }) = a.push_burst(rest, &mut pa) {
+            assert_eq!(error, Error::NonFiniteRate);
+            refusals += 1;
+            rest = rest.get(index + 1..).unwrap_or(&[]);
+        }
+    }
+    // b: one at a time.
+    for s in &samples {
+        let dt = pb.next_dt();
+        if b.push(*s, dt).is_err() {
+            pb.carry_over(dt);
+        }
+    }
+    assert_eq!(refusals, 4);
+    assert_eq!(a, b);
+    assert_eq!(a.saturated_samples(), b.saturated_samples());
+    assert_eq!(
+        a.saturated_samples(),
+        (0..3000).filter(|k| k % 97 == 0).count() as u64
+    );
+}
+
+#[test]
+fn bursts_equal_one_sample_at_a_time_on_every_rate_input() {
+    burst_equals_one_at_a_time(Hold);
+    burst_equals_one_at_a_time(Linear::new());
+    burst_equals_one_at_a_time(History::new());
+    burst_equals_one_at_a_time(TwiceRate::new());
+    burst_equals_one_at_a_time(GaussPoints::new());
+}
+
+#[test]
+fn no_interval_is_lost_across_refusals() {
+    // Constant rate: the attitude depends only on the total time integrated, which must be the full span.
+    let w = GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f64));
+    let mut samples = vec![w; 1001];
+    for k in [3, 4, 5, 500, 999] {
+        samples[k].rate.z = f64::NAN;
+    }
+    let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    let mut period = FixedPeriod::new(1e-3).unwrap();
+    let mut rest = &samples[..];
+    while let Err(r) = p.push_burst(rest, &mut period) {
+        rest = rest.get(r.index + 1..).unwrap_or(&[]);
+    }
+    let yaw = 2.0 * p.attitude().z.atan2(p.attitude().w);
+    // 1000 intervals after the first sample; f64 rounding over 1000 steps is far below 1e-12.
+    assert!((yaw - 1.0).abs() < 1e-12, "{yaw}");
+}
+
+#[test]
+fn fixed_period_sums_exactly_and_the_naive_period_does_not() {
+    for period in [1e-3, 1.0 / 1600.0, 1.0 / 3.0e3, 2.5e-4] {
+        let mut p = FixedPeriod::<f32>::new(period).unwrap();
+        let mut sum = 0.0_f64; // each f32 dt is exact in f64, and 1e6 of them sum exactly in f64 here
+        let n = 1_000_000;
+        for _ in 0..n {
+            sum += f64::from(p.next_dt());
+        }
+        let exact = n as f64 * period;
+        // Within half an ulp of one dt (f32: 2^-24 relative) plus the f64 summation's rounding.
+        let bound = 0.5 * f64::from(f32::EPSILON) * period + 1e6 * f64::EPSILON * exact;
+        assert!(
+            (sum - exact).abs() <= bound,
+            "{period}: {:e} > {bound:e}",
+            sum - exact
+        );
+    }
+    assert_eq!(FixedPeriod::<f32>::new(0.0), Err(Error::NonPositiveStep));
+    assert_eq!(FixedPeriod::<f32>::new(-1e-3), Err(Error::NonPositiveStep));
+    assert_eq!(FixedPeriod::<f32>::new(f64::NAN), Err(Error::NonFiniteStep));
+    assert_eq!(FixedPeriod::<f32>::new(1e-60), Err(Error::NonPositiveStep)); // underflows f32
+}
+
+#[test]
+fn tick_clock_wraps_refuses_and_counts_gaps() {
+    // A 16-bit counter at 32 kHz, 32 ticks per sample (a 1 kHz ODR), wrapping every 2.048 s.
+    let mut clock = TickClock::<f32>::new(32_000.0, 16).unwrap();
+    let mut t: u32 = 65_000;
+    assert_eq!(clock.dt(t), Ok(None));
+    let mut total = 0.0_f64;
+    for _ in 0..100_000 {
+        t = t.wrapping_add(32);
+        total += f64::from(clock.dt(t & 0xFFFF).unwrap().unwrap());
+    }
+    let exact = 100_000.0 * 32.0 / 32_000.0;
+    assert!((total - exact).abs() < 1e-9, "{:e}", total - exact);
+    assert_eq!(clock.gaps(), 0);
+    // Duplicate and backwards: refused, clock unchanged.
+    let before = clock;
+    assert_eq!(clock.dt(t & 0xFFFF), Err(Error::TimestampNotIncreasing));
+    assert_eq!(
+        clock.dt(t.wrapping_sub(5) & 0xFFFF),
+        Err(Error::TimestampNotIncreasing)
+    );
+    assert_eq!(clock, before);
+    // A dropped sample: 64 ticks, integrated over its true length and counted.
+    t = t.wrapping_add(64);
+    assert!((clock.dt(t & 0xFFFF).unwrap().unwrap() - 2e-3).abs() < 1e-10);
+    assert_eq!(clock.gaps(), 1);
+    assert_eq!(TickClock::<f32>::new(32_000.0, 0), Err(Error::InvalidClock));
+    assert_eq!(
+        TickClock::<f32>::new(32_000.0, 33),
+        Err(Error::InvalidClock)
+    );
+    assert_eq!(TickClock::<f32>::new(0.0, 16), Err(Error::NonPositiveStep));
+}
+
+#[test]
+fn timed_burst_equals_one_at_a_time_and_keeps_the_state_on_a_bad_timestamp() {
+    let samples = stream(600, &[100]);
+    let mut stamps: Vec<u32> = (0..600u32)
+        .map(|k| 4_294_900_000u32.wrapping_add(k * 1000))
+        .collect();
+    stamps[300] = stamps[299]; // a duplicate
+    let fifo: Vec<_> = samples
+        .iter()
+        .copied()
+        .zip(stamps.iter().copied())
+        .collect();
+    let start = Propagator::new(Quat::IDENTITY, Rk4, History::new(), FirstOrder).unwrap();
+    let mut a = start.with_accumulator(Kahan::new());
+    let mut b = a;
+    let mut ca = TickClock::<f32>::new(1e6, 32).unwrap();
+    let mut cb = ca;
+    let mut rest = &fifo[..];
+    let mut refused = vec![];
+    while let Err(r) = a.push_burst_timed(rest, &mut ca) {
+        refused.push(r.error);
+        rest = rest.get(r.index + 1..).unwrap_or(&[]);
+    }
+    assert_eq!(
+        refused,
+        [Error::NonFiniteRate, Error::TimestampNotIncreasing]
+    );
+    for (s, t) in &fifo {
+        if let Ok((next, dt)) = cb.advance(*t) {
+            match dt {
+                None => {
+                    b.push_burst_timed(&[(*s, *t)], &mut cb).unwrap();
+                    continue;
+                }
+                Some(dt) => {
+                    if b.push(*s, dt).is_ok() {
+                        cb = next;
+                    }
+                }
+            }
+        }
+    }
+    // Equal to the path that commits the clock only with an accepted sample: so a refusal left both the
+    // propagator and the clock as they were after the last accepted sample.
+    assert_eq!(a, b);
+    assert_eq!(ca, cb);
+    assert_eq!(a.steps(), 600 - 2 - 1);
+}
+
+#[test]
+fn counts_scale_per_full_scale_and_flag_the_rails() {
+    for fs in [250.0, 500.0, 1000.0, 2000.0, 4000.0] {
+        let s = CountScale::<f64>::full_scale_dps(fs);
+        let top = s.sample([32767, 0, 0]);
+        assert!(top.saturated);
+        assert!((top.rate.x - (fs * 32767.0 / 32768.0).to_radians()).abs() < 1e-12);
+        let inside = s.sample([32766, -32767, 1]);
+        assert!(!inside.saturated);
+        assert!((inside.rate.y + (fs * 32767.0 / 32768.0).to_radians()).abs() < 1e-12);
+        assert!(s.sample([0, -32768, 0]).saturated);
+    }
+    // The MPU-6050's printed sensitivities differ from 32768/FS by under 0.1 %: 131 vs 131.07.
+    let printed = CountScale::<f64>::sensitivity(131.0).rad_per_count();
+    let spanned = CountScale::<f64>::full_scale_dps(250.0).rad_per_count();
+    assert!(((printed / spanned) - 32768.0 / 250.0 / 131.0).abs() < 1e-12);
+}
+
+/// White noise by a small generator (sum of uniforms), deterministic.
+struct Noise(u64);
+impl Noise {
+    fn next(&mut self) -> f64 {
+        let mut acc = 0.0;
+        for _ in 0..12 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            acc += (self.0 >> 11) as f64 / (1u64 << 53) as f64;
+        }
+        acc - 6.0 // unit variance
+    }
+}
+
+#[test]
+fn bias_estimator_learns_still_bias_and_nothing_else() {
+    let gate = 0.05; // rad/s
+    let bias = Vec3::new(0.012, -0.007, 0.003);
+    let sigma = 0.002; // rad/s per sample
+    let mut noise = Noise(7);
+    let mut est = BiasEstimator::<f64>::new(1000, gate).unwrap();
+    let mut sample = |extra: Vec3<f64>, noise: &mut Noise| {
+        GyroSample::new(bias + extra + Vec3::new(noise.next(), noise.next(), noise.next()) * sigma)
+    };
+    // Still for 20 s: the estimate's error is the noise averaged over the still time, σ/√N.
+    for _ in 0..20_000 {
+        est.update(sample(Vec3::ZERO, &mut noise)).unwrap();
+    }
+    let err = (est.bias() - bias).norm();
+    let expected = sigma * (3.0_f64 / 20_000.0).sqrt(); // rms of the 3-vector error
+    assert!(err < 4.0 * expected, "{err:e} vs {expected:e}");
+    // A real rotation faster than the gate (0.06 rad/s about x) for 10 s: never learned.
+    let learned = est.bias();
+    for _ in 0..10_000 {
+        est.update(sample(Vec3::new(0.06, 0.0, 0.0), &mut noise))
+            .unwrap();
+    }
+    assert_eq!(est.bias(), learned);
+    // Saturated samples, however still, are never learned from.
+    for _ in 0..5_000 {
+        let mut s = sample(Vec3::new(0.01, 0.0, 0.0), &mut noise);
+        s.saturated = true;
+        est.update(s).unwrap();
+    }
+    assert_eq!(est.bias(), learned);
+    // A NaN is refused and changes nothing.
+    let before = est;
+    assert_eq!(
+        est.update(GyroSample::new(Vec3::new(f64::NAN, 0.0, 0.0))),
+        Err(Error::NonFiniteRate)
+    );
+    assert_eq!(est, before);
+    // A rotation slower than the gate (0.04 rad/s) is indistinguishable from bias: it is learned.
+    for _ in 0..5_000 {
+        est.update(sample(Vec3::new(0.04, 0.0, 0.0), &mut noise))
+            .unwrap();
+    }
+    assert!(est.bias().x > learned.x + 0.002, "{:?}", est.bias());
+    assert_eq!(
+        BiasEstimator::<f32>::new(0, 0.05),
+        Err(Error::InvalidEstimator)
+    );
+    assert_eq!(
+        BiasEstimator::<f32>::new(10, f32::NAN),
+        Err(Error::InvalidEstimator)
+    );
+    assert_eq!(
+        BiasEstimator::<f32>::new(10, -1.0),
+        Err(Error::InvalidEstimator)
+    );
+}
