@@ -1,133 +1,136 @@
 //! Test 5 of the core issue: every bad input gets its typed error and leaves the propagator bit-for-bit
-//! unchanged, for every scheme × stabilizer × input model, in f32 and f64.
+//! unchanged — attitude, counters and the samples the input model keeps — for every scheme × stabilizer ×
+//! input model, at every position of the input model's cycle (start, pending, closing), in f32 and f64.
+//!
+//! "Unchanged" is checked twice: `==` on the whole `Propagator` (every field, input model included) and
+//! equality of its `Debug` text, which tells `-0.0` from `0.0` (see `support::state`).
 
-use quatprop::scheme::{Method, Rk4, Scheme};
-use quatprop::stabilize::{Baumgarte, Every, Policy};
-use quatprop::{Error, Propagator, Quat, Real, Vec3};
+mod support;
 
-/// Bit pattern of the whole propagator state, via its public accessors (NaN-safe comparison).
-fn snapshot<T: Real, S: Scheme, Z: quatprop::stabilize::Stabilizer<T>>(
-    p: &Propagator<T, S, Z>,
-) -> ([u64; 4], u64, u64) {
-    let q = p.attitude().to_f64();
-    (
-        [q.w.to_bits(), q.x.to_bits(), q.y.to_bits(), q.z.to_bits()],
-        p.steps(),
-        p.corrections(),
-    )
-}
+use quatprop::input::coning::ConingKind;
+use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::scheme::{Baumgarte, Rk4, Scheme, SchemeKind};
+use quatprop::stabilize::{Every, Normalize, Off, Stabilizer, StabilizerKind};
+use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Vec3};
+use support::state;
 
-fn policies<T: Real>() -> [Policy<T>; 5] {
+fn stabilizers() -> [StabilizerKind; 4] {
     [
-        Policy::Off,
-        Policy::Normalize,
-        Policy::FirstOrder,
-        Policy::Every(3),
-        Policy::Baumgarte {
-            k: T::from_f64(0.5),
-        },
+        StabilizerKind::Off,
+        StabilizerKind::Normalize,
+        StabilizerKind::FirstOrder,
+        StabilizerKind::Every(3),
     ]
 }
 
-#[derive(Clone, Copy, Debug)]
-enum Call {
-    Hold,
-    Linear,
-    Mid,
-}
+/// Pushes of good samples before the bad one: 0…5 covers every position of every model's cycle (the
+/// longest is FiveSample's five increments).
+const POSITIONS: usize = 6;
 
-fn call<T: Real>(
-    p: &mut Propagator<T, Method, Policy<T>>,
-    c: Call,
-    w: Vec3<T>,
-    dt: T,
-) -> Result<(), Error> {
-    let ok = Vec3::new(T::from_f64(0.1), T::ZERO, T::ZERO);
-    match c {
-        Call::Hold => p.step_hold(w, dt),
-        // The bad sample in each position in turn is covered by the loop over `slot` below.
-        Call::Linear => p.step_linear(ok, w, dt),
-        Call::Mid => p.step_mid(ok, w, ok, dt),
-    }
-}
-
-fn check_all<T: Real>() {
+/// Every bad input of one propagator configuration, at every position of the input model's cycle.
+/// `sample(v)` makes the model's sample from a rate-like vector (a delta angle takes `v · dt`).
+fn check_config<T, S, I, Z>(scheme: S, input: I, z: Z, sample: &dyn Fn(Vec3<T>) -> I::Sample)
+where
+    T: Real,
+    S: Scheme<T> + core::fmt::Debug + PartialEq,
+    I: InputModel<T> + core::fmt::Debug + PartialEq,
+    Z: Stabilizer + core::fmt::Debug + PartialEq,
+{
     let nan = T::from_f64(f64::NAN);
     let inf = T::from_f64(f64::INFINITY);
     let good_w = Vec3::new(T::from_f64(0.3), T::from_f64(-0.2), T::from_f64(0.5));
     let good_dt = T::from_f64(0.01);
-    for m in Method::ALL {
-        for pol in policies::<T>() {
-            for c in [Call::Hold, Call::Linear, Call::Mid] {
-                let mut p = Propagator::new(Quat::IDENTITY, m, pol).unwrap();
-                // Take a few good steps so the state is not trivial (and Every has a pending count).
-                for _ in 0..2 {
-                    call(&mut p, c, good_w, good_dt).unwrap();
-                }
-                let before = snapshot(&p);
-                let limit = m.step_angle_limit();
-                let mut cases: Vec<(Vec3<T>, T, Error)> = vec![
-                    (
-                        Vec3::new(nan, T::ZERO, T::ZERO),
-                        good_dt,
-                        Error::NonFiniteRate,
-                    ),
-                    (
-                        Vec3::new(T::ZERO, inf, T::ZERO),
-                        good_dt,
-                        Error::NonFiniteRate,
-                    ),
-                    (
-                        Vec3::new(T::ZERO, T::ZERO, -inf),
-                        good_dt,
-                        Error::NonFiniteRate,
-                    ),
-                    (good_w, nan, Error::NonFiniteStep),
-                    (good_w, inf, Error::NonFiniteStep),
-                    (good_w, -inf, Error::NonFiniteStep),
-                    (good_w, T::ZERO, Error::NonPositiveStep),
-                    (good_w, -T::ZERO, Error::NonPositiveStep),
-                    (good_w, -good_dt, Error::NonPositiveStep),
-                ];
-                if limit.is_finite() {
-                    // 1.5× the bound: refused with the bound reported.
-                    let w = Vec3::new(T::from_f64(1.5 * limit / 0.01), T::ZERO, T::ZERO);
-                    cases.push((
-                        w,
-                        good_dt,
-                        Error::StepAngleBeyondStability {
-                            step_angle: 0.0,
-                            limit,
-                        },
-                    ));
-                }
-                for (w, dt, want) in cases {
-                    let got = call(&mut p, c, w, dt);
-                    let err = got.expect_err("bad input accepted");
-                    match (err, want) {
-                        (
-                            Error::StepAngleBeyondStability {
-                                step_angle,
-                                limit: l,
-                            },
-                            Error::StepAngleBeyondStability { limit: wl, .. },
-                        ) => {
-                            assert_eq!(l, wl);
-                            assert!((step_angle / (1.5 * l) - 1.0).abs() < 1e-5, "{step_angle}");
-                        }
-                        _ => assert_eq!(err, want, "{m:?} {pol:?} {c:?}"),
+    let limit = scheme.information().step_angle_limit;
+    for position in 0..POSITIONS {
+        let mut p = Propagator::new(Quat::IDENTITY, scheme, input, z).unwrap();
+        for _ in 0..position {
+            p.push(sample(good_w), good_dt).unwrap();
+        }
+        let label = format!("{scheme:?} {z:?} {input:?} position {position}");
+        let before = p;
+        let text = state(&p);
+        let cases: [(Vec3<T>, T, Error); 9] = [
+            (
+                Vec3::new(nan, T::ZERO, T::ZERO),
+                good_dt,
+                Error::NonFiniteRate,
+            ),
+            (
+                Vec3::new(T::ZERO, inf, T::ZERO),
+                good_dt,
+                Error::NonFiniteRate,
+            ),
+            (
+                Vec3::new(T::ZERO, T::ZERO, -inf),
+                good_dt,
+                Error::NonFiniteRate,
+            ),
+            (good_w, nan, Error::NonFiniteStep),
+            (good_w, inf, Error::NonFiniteStep),
+            (good_w, -inf, Error::NonFiniteStep),
+            (good_w, T::ZERO, Error::NonPositiveStep),
+            (good_w, -T::ZERO, Error::NonPositiveStep),
+            (good_w, -good_dt, Error::NonPositiveStep),
+        ];
+        for (w, dt, want) in cases {
+            assert_eq!(p.push(sample(w), dt), Err(want), "{label}");
+            assert!(p == before, "{label} {want:?}: state changed");
+            assert_eq!(state(&p), text, "{label} {want:?}: state changed");
+        }
+        if limit.is_finite() {
+            // 1.5× the bound per sample along x: accepted while the model only keeps it, refused with the
+            // bound reported by the push that closes a step containing it, and that push changes nothing.
+            let huge = Vec3::new(T::from_f64(1.5 * limit / 0.01), T::ZERO, T::ZERO);
+            let mut q = p;
+            let mut next = sample(huge);
+            let mut refused = false;
+            for _ in 0..POSITIONS {
+                let pending = q;
+                match q.push(next, good_dt) {
+                    Ok(()) => assert_eq!(q.steps(), p.steps(), "{label}: stepped over a huge rate"),
+                    Err(Error::StepAngleBeyondStability {
+                        step_angle,
+                        limit: l,
+                    }) => {
+                        assert_eq!(l, limit, "{label}");
+                        assert!(step_angle > limit, "{label}: {step_angle}");
+                        assert!(q == pending, "{label}: state changed");
+                        assert_eq!(state(&q), state(&pending), "{label}");
+                        refused = true;
+                        break;
                     }
-                    assert_eq!(
-                        snapshot(&p),
-                        before,
-                        "{m:?} {pol:?} {c:?} {want:?}: state changed"
-                    );
+                    Err(e) => panic!("{label}: {e:?}"),
                 }
-                // And the propagator still works afterwards.
-                call(&mut p, c, good_w, good_dt).unwrap();
+                next = sample(good_w);
             }
+            assert!(refused, "{label}: a huge rate was never refused");
+        }
+        // And the propagator still works afterwards.
+        p.push(sample(good_w), good_dt).unwrap();
+    }
+}
+
+fn check_scheme<T: Real, S: Scheme<T> + core::fmt::Debug + PartialEq>(scheme: S) {
+    let gyro = |v: Vec3<T>| GyroSample::new(v);
+    let delta = |v: Vec3<T>| DeltaAngle::new(v * T::from_f64(0.01));
+    for z in stabilizers() {
+        check_config(scheme, Hold, z, &gyro);
+        check_config(scheme, Linear::new(), z, &gyro);
+        check_config(scheme, History::new(), z, &gyro);
+        check_config(scheme, TwiceRate::new(), z, &gyro);
+        check_config(scheme, GaussPoints::new(), z, &gyro);
+        for c in ConingKind::ALL {
+            check_config(scheme, DeltaAngles::new(c), z, &delta);
         }
     }
+}
+
+fn check_all<T: Real>() {
+    for m in SchemeKind::ALL {
+        check_scheme::<T, _>(m);
+    }
+    // The seed's Baumgarte right-hand side (4k·dt = 0.02, far inside its gain bound).
+    check_scheme::<T, _>(Baumgarte::new(Rk4, T::from_f64(0.5)).unwrap());
 }
 
 #[test]
@@ -142,51 +145,62 @@ fn bad_inputs_are_refused_with_state_unchanged_f64() {
 
 #[test]
 fn non_finite_sample_in_every_position_is_refused() {
-    let mut p = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Policy::Normalize).unwrap();
-    let ok = Vec3::new(0.1, 0.2, 0.3);
-    let bad = Vec3::new(0.1, f64::NAN, 0.3);
-    let before = p;
-    assert_eq!(p.step_linear(bad, ok, 0.01), Err(Error::NonFiniteRate));
-    assert_eq!(p.step_linear(ok, bad, 0.01), Err(Error::NonFiniteRate));
-    assert_eq!(p.step_mid(bad, ok, ok, 0.01), Err(Error::NonFiniteRate));
-    assert_eq!(p.step_mid(ok, bad, ok, 0.01), Err(Error::NonFiniteRate));
-    assert_eq!(p.step_mid(ok, ok, bad, 0.01), Err(Error::NonFiniteRate));
-    assert_eq!(p, before);
+    // The 0.1 `step_mid(w0, wm, w1)` had three sample positions; TwiceRate takes them one push each.
+    let ok = GyroSample::new(Vec3::new(0.1, 0.2, 0.3));
+    let bad = GyroSample::new(Vec3::new(0.1, f64::NAN, 0.3));
+    let mut p = Propagator::new(Quat::<f64>::IDENTITY, Rk4, TwiceRate::new(), Normalize).unwrap();
+    for position in 0..3 {
+        let before = p;
+        assert_eq!(p.push(bad, 0.01), Err(Error::NonFiniteRate), "{position}");
+        assert_eq!(p, before);
+        p.push(ok, 0.01).unwrap();
+        assert_ne!(p, before, "a good sample is kept");
+    }
+    assert_eq!(p.steps(), 1);
 }
 
 #[test]
 fn bad_initial_quaternions_and_stabilizers_are_refused() {
-    let s = Method::Rk4;
+    let s = SchemeKind::Rk4;
     assert_eq!(
-        Propagator::new(Quat::<f64>::ZERO, s, Policy::Off).unwrap_err(),
+        Propagator::new(Quat::<f64>::ZERO, s, Hold, Off).unwrap_err(),
         Error::ZeroQuaternion
     );
     assert_eq!(
-        Propagator::new(Quat::new(0.0_f32, 0.0, -0.0, 0.0), s, Policy::Off).unwrap_err(),
+        Propagator::new(Quat::new(0.0_f32, 0.0, -0.0, 0.0), s, Hold, Off).unwrap_err(),
         Error::ZeroQuaternion
     );
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         assert_eq!(
-            Propagator::new(Quat::new(1.0, bad, 0.0, 0.0), s, Policy::Off).unwrap_err(),
+            Propagator::new(Quat::new(1.0, bad, 0.0, 0.0), s, Hold, Off).unwrap_err(),
             Error::NonFiniteQuaternion
         );
     }
     // Subnormal but non-zero: a valid direction, normalized exactly.
-    let p = Propagator::new(Quat::new(1e-45_f32, 0.0, 0.0, 0.0), s, Policy::Off).unwrap();
+    let p = Propagator::new(Quat::new(1e-45_f32, 0.0, 0.0, 0.0), s, Hold, Off).unwrap();
     assert_eq!(p.attitude(), Quat::IDENTITY);
     assert_eq!(
-        Propagator::new(Quat::<f64>::IDENTITY, s, Every(0)).unwrap_err(),
+        Propagator::new(Quat::<f64>::IDENTITY, s, Hold, Every(0)).unwrap_err(),
         Error::InvalidStabilizer
     );
-    for k in [-1.0, f64::NAN, f64::INFINITY] {
-        assert_eq!(
-            Propagator::new(Quat::<f64>::IDENTITY, s, Baumgarte { k }).unwrap_err(),
-            Error::InvalidStabilizer
-        );
+    assert_eq!(
+        Propagator::new(Quat::<f64>::IDENTITY, s, Hold, StabilizerKind::Every(0)).unwrap_err(),
+        Error::InvalidStabilizer
+    );
+    for k in [-1.0, -f64::MIN_POSITIVE, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        assert_eq!(Baumgarte::new(Rk4, k).unwrap_err(), Error::InvalidGain, "{k}");
     }
-    // set_attitude refuses the same inputs and keeps the state.
-    let mut p = Propagator::new(Quat::<f64>::IDENTITY, s, Policy::Off).unwrap();
-    p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.1).unwrap();
+    // Zero and any finite positive gain are valid gains (a huge one is refused per step instead).
+    for k in [0.0, f64::MIN_POSITIVE, f64::MAX] {
+        assert_eq!(Baumgarte::new(Rk4, k).unwrap().gain(), k);
+    }
+    // set_attitude refuses the same inputs and keeps the state, input model included.
+    let mut p = Propagator::new(Quat::<f64>::IDENTITY, s, History::new(), Off).unwrap();
+    for _ in 0..3 {
+        p.push(GyroSample::new(Vec3::new(0.1, 0.0, 0.0)), 0.1)
+            .unwrap();
+    }
+    assert_eq!(p.input().len(), 3);
     let before = p;
     assert_eq!(p.set_attitude(Quat::ZERO), Err(Error::ZeroQuaternion));
     assert_eq!(
@@ -201,54 +215,59 @@ fn baumgarte_gain_beyond_the_real_axis_bound_is_refused() {
     // RK4's real-axis interval ends at 2.785, the accepted gain step at half of it: 4·k·dt = 4 · 100 · 0.01
     // = 4 is beyond it, and so is 4 · 100 · 0.004 = 1.6 (inside the interval, but Rk5 escapes at 0.82 of
     // its own interval: the lab's Baumgarte sweep).
-    let mut p = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Baumgarte { k: 100.0 }).unwrap();
+    let scheme = Baumgarte::new(Rk4, 100.0).unwrap();
+    let mut p = Propagator::new(Quat::<f64>::IDENTITY, scheme, Hold, Off).unwrap();
+    let w = GyroSample::new(Vec3::new(0.1, 0.0, 0.0));
     let before = p;
-    match p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.01) {
+    match p.push(w, 0.01) {
         Err(Error::GainBeyondStability { gain_step, limit }) => {
             assert!((gain_step - 4.0).abs() < 1e-12);
             assert!((limit - 2.785 / 2.0).abs() < 1e-3, "{limit}");
+            assert_eq!(limit, scheme.gain_step_limit());
         }
         other => panic!("{other:?}"),
     }
     assert_eq!(p, before);
     assert!(matches!(
-        p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.004),
+        p.push(w, 0.004),
         Err(Error::GainBeyondStability { .. })
     ));
     assert_eq!(p, before);
     // Inside the bound it steps: 4 · 100 · 0.003 = 1.2.
-    p.step_hold(Vec3::new(0.1, 0.0, 0.0), 0.003).unwrap();
+    p.push(w, 0.003).unwrap();
+    assert_eq!(p.steps(), 1);
 }
 
 #[test]
 fn overflowing_rates_are_refused_not_propagated() {
     // |ω|² overflows f32: the step angle is infinite, beyond any finite bound.
-    let mut p = Propagator::new(Quat::<f32>::IDENTITY, Method::Rk4, Policy::Normalize).unwrap();
+    let mut p = Propagator::new(Quat::<f32>::IDENTITY, SchemeKind::Rk4, Hold, Normalize).unwrap();
     let before = p;
-    let huge = Vec3::new(3e38_f32, 3e38, 0.0);
+    let huge = GyroSample::new(Vec3::new(3e38_f32, 3e38, 0.0));
     assert!(matches!(
-        p.step_hold(huge, 1.0),
+        p.push(huge, 1.0),
         Err(Error::StepAngleBeyondStability { .. })
     ));
     assert_eq!(p, before);
     // The exponential map has no bound: a huge but finite rotation is a valid (if meaningless) rotation,
-    // computed without overflow, and the attitude stays finite and unit.
-    let mut p = Propagator::new(Quat::<f32>::IDENTITY, Method::ExpMap, Policy::Normalize).unwrap();
-    p.step_hold(huge, 1.0).unwrap();
+    // computed without overflow, and the attitude stays finite and unit (Normalize: |N| ≤ 4ε).
+    let mut p = Propagator::new(Quat::<f32>::IDENTITY, SchemeKind::ExpMap, Hold, Normalize).unwrap();
+    p.push(huge, 1.0).unwrap();
     assert!(p.attitude().is_finite());
     assert!(p.norm_error().abs() <= 4.0 * f32::EPSILON);
 }
 
 #[test]
 fn zero_rate_hold_is_the_identity_bit_for_bit() {
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         let q0 = Quat::new(0.5_f32, -0.5, 0.5, 0.5);
-        let mut p = Propagator::new(q0, m, Policy::Off).unwrap();
+        let mut p = Propagator::new(q0, m, Hold, Off).unwrap();
         let q = p.attitude();
         for _ in 0..1000 {
-            p.step_hold(Vec3::ZERO, 0.001).unwrap();
+            p.push(GyroSample::new(Vec3::ZERO), 0.001).unwrap();
         }
         assert_eq!(p.attitude(), q, "{m:?}");
+        assert_eq!(p.steps(), 1000);
     }
 }
 

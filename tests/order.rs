@@ -8,14 +8,15 @@
 //! For a held rate one step is `R(xJ) q` with `J² = −1`; the local error `R − e^z` starts at `z^{p+1}`, which
 //! is a multiple of `q` (radial, a pure norm error) when p+1 is even and tangential when it is odd.
 //! Odd-order schemes (Euler, Rk3, Rk5) therefore gain one order in attitude. The tables below are the orders
-//! the crate documents (README "Schemes"); the fit must land within ±0.15 of them.
+//! the crate documents; the fit must land within ±0.15 of them. A last test checks that each scheme's own
+//! `Information::order` is what is measured.
 
 mod support;
 
-use quatprop::scheme::{Method, Scheme};
+use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::Off;
-use quatprop::{Propagator, Quat, Vec3};
-use support::{loglog_slope, step, Coning, Input};
+use quatprop::{Quat, Vec3};
+use support::{loglog_slope, propagate, Coning, Input};
 
 /// Tolerance on the fitted slope, from the issue.
 const SLOPE_TOL: f64 = 0.15;
@@ -24,25 +25,30 @@ const SLOPE_TOL: f64 = 0.15;
 /// f64 rounding (~1e-16 per step) takes over.
 const FIT_WINDOW: (f64, f64) = (1e-11, 3e-2);
 
+/// 0.7 s is not a whole number of coning periods: over a full period odd error terms cancel and every
+/// first-order combination would show a spurious second order.
+const CONING_T_END: f64 = 0.7;
+
+/// Largest |ω| of the scenes (rad/s): coning Ω sin α ≈ 1.86 and 2Ω sin²(α/2) ≈ 0.14; constant rate 3.49.
+const MAX_RATE: f64 = 8.0;
+
+#[derive(Clone, Copy)]
 struct Errors {
     quaternion: f64,
     attitude: f64,
 }
 
 fn run(
-    m: Method,
+    m: SchemeKind,
     input: Input,
     reference: &dyn Fn(f64) -> Quat<f64>,
     rate: &dyn Fn(f64) -> Vec3<f64>,
     t_end: f64,
     n: usize,
 ) -> Errors {
-    let h = t_end / n as f64;
-    let mut p = Propagator::new(reference(0.0), m, Off).unwrap();
-    for i in 0..n {
-        step(&mut p, input, rate, i as f64 * h, h).unwrap();
-    }
-    let q = p.attitude();
+    let q = propagate::<f64, _, _>(m, Off, input, reference(0.0), rate, t_end, n)
+        .unwrap()
+        .q;
     let r = reference(t_end);
     Errors {
         quaternion: (q - r).norm().min((q + r).norm()),
@@ -50,76 +56,86 @@ fn run(
     }
 }
 
-/// Fits the slope over step counts 2²…2¹⁴ whose errors fall in the window; needs at least 3 points.
+/// Fits the slopes (quaternion, attitude) over step counts 2²…2¹⁴ whose errors fall in the window; each
+/// fit needs at least 3 points.
 fn measured_orders(
-    m: Method,
+    m: SchemeKind,
     input: Input,
     reference: &dyn Fn(f64) -> Quat<f64>,
     rate: &dyn Fn(f64) -> Vec3<f64>,
     t_end: f64,
 ) -> (f64, f64) {
-    let fit = |pick: &dyn Fn(&Errors) -> f64| {
-        let mut hs = Vec::new();
-        let mut es = Vec::new();
-        for k in 2..=14 {
-            let n = 1usize << k;
-            let h = t_end / n as f64;
-            if m.step_angle_limit().is_finite() && h * 8.0 > m.step_angle_limit() {
-                continue; // |ω| ≤ 8 rad/s in the scenes: stay inside the bound
-            }
-            let e = pick(&run(m, input, reference, rate, t_end, n));
+    let limit = Scheme::<f64>::information(&m).step_angle_limit;
+    let mut points: [(Vec<f64>, Vec<f64>); 2] = Default::default();
+    for k in 2..=14 {
+        let n = 1usize << k;
+        let h = t_end / n as f64;
+        if h * MAX_RATE > limit {
+            continue; // stay inside the stability bound
+        }
+        let e = run(m, input, reference, rate, t_end, n);
+        for (e, (hs, es)) in [e.quaternion, e.attitude]
+            .into_iter()
+            .zip(points.iter_mut())
+        {
             if e > FIT_WINDOW.0 && e < FIT_WINDOW.1 {
                 hs.push(h);
                 es.push(e);
             }
         }
+    }
+    let fit = |(hs, es): &(Vec<f64>, Vec<f64>)| {
         assert!(
             hs.len() >= 3,
             "{m:?} {input:?}: only {} points in the fit window",
             hs.len()
         );
-        loglog_slope(&hs, &es)
+        loglog_slope(hs, es)
     };
-    (fit(&|e| e.quaternion), fit(&|e| e.attitude))
+    (fit(&points[0]), fit(&points[1]))
 }
 
-/// Documented orders (quaternion, attitude) on the coning motion, one gyro sample model per column.
-fn expected_coning(m: Method, input: Input) -> (f64, f64) {
+/// Documented orders (quaternion, attitude) on the coning motion, one input model per column.
+fn expected_coning(m: SchemeKind, input: Input) -> (f64, f64) {
+    use SchemeKind as S;
     match (input, m) {
-        // The held start sample misses ω' h/2: first order for every scheme.
+        // The held sample misses ω'h/2: first order for every scheme.
         (Input::Hold, _) => (1.0, 1.0),
         // Euler only looks at c = 0.
-        (_, Method::Euler) => (1.0, 1.0),
+        (_, S::Euler) => (1.0, 1.0),
         // Linear interpolation: the trapezoid error in ∫ω caps everything at 2.
         (Input::Linear, _) => (2.0, 2.0),
-        (Input::Mid, Method::Rk2) => (2.0, 2.0),
+        (_, S::Rk2) => (2.0, 2.0),
         // Rk3's 4th-order local error is radial: order 3 in q, 4 in attitude.
-        (Input::Mid, Method::Rk3) => (3.0, 4.0),
-        (Input::Mid, Method::Rk4) => (4.0, 4.0),
-        // Rk5's nodes 1/5, 3/10, 4/5, 8/9 see the quadratic interpolant, whose O(h³) error integrates to zero
-        // under Rk5's quadrature (Σ b c(c−½)(c−1) = 0) but whose next term does not: order 4.
-        (Input::Mid, Method::Rk5) => (4.0, 4.0),
-        // Fourth-order Magnus; Magnus4 and Cf4 sample the quadratic at the Gauss nodes.
-        (Input::Mid, Method::ExpMap | Method::Magnus4 | Method::Cf4) => (4.0, 4.0),
+        (_, S::Rk3) => (3.0, 4.0),
+        (_, S::Rk4) => (4.0, 4.0),
+        // TwiceRate: Rk5's nodes 1/5, 3/10, 4/5, 8/9 see the quadratic interpolant, whose O(h³) error
+        // integrates to zero under Rk5's quadrature (Σ b c(c−½)(c−1) = 0) but whose next term does not.
+        // History: the cubic's O(h⁴) error integrates to the Adams–Moulton constant (−19/720) h⁵ per step.
+        // GaussPoints: the line through the Gauss nodes matches ∫ω and the Magnus commutator to O(h⁵) per
+        // step, not beyond. Order 4 with each.
+        (_, S::Rk5) => (4.0, 4.0),
+        // Fourth-order Magnus from each of the three fourth-order inputs.
+        (_, S::ExpMap | S::Magnus4 | S::Cf4) => (4.0, 4.0),
     }
 }
 
 /// Documented orders (quaternion, attitude) on constant rotation (every input model sees the exact rate).
-fn expected_constant(m: Method) -> (f64, f64) {
+fn expected_constant(m: SchemeKind) -> (f64, f64) {
     match m {
-        Method::Euler => (1.0, 2.0),
-        Method::Rk2 => (2.0, 2.0),
-        Method::Rk3 => (3.0, 4.0),
-        Method::Rk4 => (4.0, 4.0),
-        Method::Rk5 => (5.0, 6.0),
-        Method::ExpMap | Method::Magnus4 | Method::Cf4 => unreachable!("exact"),
+        SchemeKind::Euler => (1.0, 2.0),
+        SchemeKind::Rk2 => (2.0, 2.0),
+        SchemeKind::Rk3 => (3.0, 4.0),
+        SchemeKind::Rk4 => (4.0, 4.0),
+        SchemeKind::Rk5 => (5.0, 6.0),
+        SchemeKind::ExpMap | SchemeKind::Magnus4 | SchemeKind::Cf4 => unreachable!("exact"),
     }
 }
 
-fn check(label: &str, m: Method, input: Input, got: (f64, f64), want: (f64, f64)) {
+fn check(label: &str, m: SchemeKind, input: Input, got: (f64, f64), want: (f64, f64)) {
     println!(
-        "{label:9} {:6} {input:6?}: quaternion order {:.3} (doc {}), attitude order {:.3} (doc {})",
-        m.name(),
+        "{label:9} {:8} {input:12?}: quaternion order {:.3} (doc {}), attitude order {:.3} (doc {})",
+        Scheme::<f64>::information(&m).name,
         got.0,
         want.0,
         got.1,
@@ -142,30 +158,37 @@ fn check(label: &str, m: Method, input: Input, got: (f64, f64), want: (f64, f64)
 #[test]
 fn order_on_coning_every_scheme_and_input_model() {
     let c = Coning::STANDARD;
-    // 0.7 s is not a whole number of coning periods: over a full period odd error terms cancel and every
-    // first-order combination would show a spurious second order.
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         for input in Input::ALL {
-            let got = measured_orders(m, input, &|t| c.attitude(t), &|t| c.rate(t), 0.7);
+            let got = measured_orders(m, input, &|t| c.attitude(t), &|t| c.rate(t), CONING_T_END);
             check("coning", m, input, got, expected_coning(m, input));
         }
     }
 }
 
-#[test]
-fn order_on_constant_rate_every_scheme_and_input_model() {
+fn constant_scene() -> (Vec3<f64>, impl Fn(f64) -> Quat<f64>) {
     let w = Vec3::new(1.2_f64, -2.0, 2.6); // |ω| ≈ 3.49 rad/s
     let q0 = Quat::new(0.9_f64, 0.1, -0.3, 0.2).normalized().unwrap();
-    let reference = move |t: f64| q0 * Quat::from_rotation_vector(w * t);
-    for m in Method::ALL {
+    (w, move |t: f64| q0 * Quat::from_rotation_vector(w * t))
+}
+
+#[test]
+fn order_on_constant_rate_every_scheme_and_input_model() {
+    let (w, reference) = constant_scene();
+    for m in SchemeKind::ALL {
         for input in Input::ALL {
-            if matches!(m, Method::ExpMap | Method::Magnus4 | Method::Cf4) {
-                // Exact: the error is rounding only, whatever the step.
+            if Scheme::<f64>::information(&m)
+                .step_angle_limit
+                .is_infinite()
+            {
+                // The exponential maps are exact: the error is rounding only, whatever the step. Each step
+                // rounds the four components (≤ ε/2 each) in the product and the addition, a few ε per
+                // step; 64ε per step bounds it with room for the History prelude's set_attitude.
                 for n in [3usize, 17, 100] {
                     let e = run(m, input, &reference, &|_| w, 1.3, n);
                     assert!(
                         e.quaternion < 64.0 * f64::EPSILON * n as f64,
-                        "{n}: {}",
+                        "{m:?} {input:?} {n}: {}",
                         e.quaternion
                     );
                 }
@@ -174,5 +197,39 @@ fn order_on_constant_rate_every_scheme_and_input_model() {
             let got = measured_orders(m, input, &reference, &|_| w, 1.3);
             check("constant", m, input, got, expected_constant(m));
         }
+    }
+}
+
+/// `Information::order` is the classical order "on a smooth problem": for a Runge–Kutta tableau the
+/// quaternion order on a held rate (where the input model adds no error), for the exponential maps the
+/// order reached with a fourth-order input model on a varying rate. Each must be what is measured.
+#[test]
+fn information_order_is_the_measured_order() {
+    let (w, reference) = constant_scene();
+    let c = Coning::STANDARD;
+    for m in SchemeKind::ALL {
+        let info = Scheme::<f64>::information(&m);
+        let measured = if info.step_angle_limit.is_finite() {
+            measured_orders(m, Input::Hold, &reference, &|_| w, 1.3).0
+        } else {
+            measured_orders(
+                m,
+                Input::TwiceRate,
+                &|t| c.attitude(t),
+                &|t| c.rate(t),
+                CONING_T_END,
+            )
+            .0
+        };
+        println!(
+            "{}: Information::order {}, measured {measured:.3}",
+            info.name, info.order
+        );
+        assert!(
+            (measured - info.order as f64).abs() <= SLOPE_TOL,
+            "{}: Information::order {} but measured {measured}",
+            info.name,
+            info.order
+        );
     }
 }

@@ -1,9 +1,18 @@
 //! Exact reference motions and helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use quatprop::input::{GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
 use quatprop::scheme::Scheme;
 use quatprop::stabilize::Stabilizer;
-use quatprop::{Propagator, Quat, Real, Vec3};
+use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
+
+/// `√3/6`: half the distance between the two Gauss–Legendre nodes on [0, 1] (typed here independently of the
+/// crate, whose constant is private).
+pub const GAUSS_HALF_GAP: f64 = 0.288_675_134_594_812_9;
+/// The first Gauss–Legendre node `½ − √3/6` of a step.
+pub const GAUSS_1: f64 = 0.5 - GAUSS_HALF_GAP;
+/// The second Gauss–Legendre node `½ + √3/6` of a step.
+pub const GAUSS_2: f64 = 0.5 + GAUSS_HALF_GAP;
 
 /// Coning motion about z with half-angle `alpha` (rad) at frequency `big_omega` (rad/s), from the notes:
 /// q(t) = (cos α/2, sin α/2 cos Ωt, sin α/2 sin Ωt, 0),
@@ -35,56 +44,147 @@ impl Coning {
     }
 }
 
-/// How a step sees the rate.
+/// The rate input models, with the sampling schedule each one expects from a gyro.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Input {
-    /// One sample at the start of the step, held.
+    /// One sample per step, at its end, held over the step (`input::Hold`).
     Hold,
-    /// Samples at both ends, linear.
+    /// One sample per step, linear between the step's two end samples (`input::Linear`).
     Linear,
-    /// Samples at start, middle and end.
-    Mid,
+    /// One sample per step, the cubic through the last four (`input::History`). Primed with the samples
+    /// before t = 0 (a gyro that was already running), so every step of the run is a full cubic step.
+    History,
+    /// Two samples per step, at its middle and its end (`input::TwiceRate`, the 0.1 `step_mid`).
+    TwiceRate,
+    /// Two samples per step, at its Gauss–Legendre nodes (`input::GaussPoints`, the 0.1 `step_gauss`).
+    GaussPoints,
 }
 
 impl Input {
-    pub const ALL: [Input; 3] = [Input::Hold, Input::Linear, Input::Mid];
-}
+    pub const ALL: [Input; 5] = [
+        Input::Hold,
+        Input::Linear,
+        Input::History,
+        Input::TwiceRate,
+        Input::GaussPoints,
+    ];
 
-/// Steps `p` once over `[t, t + h]` sampling `rate`, in precision `T`.
-pub fn step<T: Real, S: Scheme, Z: Stabilizer<T>>(
-    p: &mut Propagator<T, S, Z>,
-    input: Input,
-    rate: &dyn Fn(f64) -> Vec3<f64>,
-    t: f64,
-    h: f64,
-) -> Result<(), quatprop::Error> {
-    let w = |t: f64| Vec3::<T>::from_f64(rate(t));
-    let dt = T::from_f64(h);
-    match input {
-        Input::Hold => p.step_hold(w(t), dt),
-        Input::Linear => p.step_linear(w(t), w(t + h), dt),
-        Input::Mid => p.step_mid(w(t), w(t + 0.5 * h), w(t + h), dt),
+    /// The pushes `(sample time, dt)` made before the first step of `[0, h]`, from t ≤ 0.
+    fn prelude(self, h: f64) -> Vec<(f64, f64)> {
+        match self {
+            Input::Hold | Input::GaussPoints => vec![],
+            Input::Linear => vec![(0.0, h)],
+            Input::TwiceRate => vec![(0.0, 0.5 * h)],
+            Input::History => vec![(-2.0 * h, h), (-h, h), (0.0, h)],
+        }
+    }
+
+    /// The pushes `(sample time, dt)` of the step `[t, t + h]`; the last one closes the step.
+    fn pushes(self, t: f64, h: f64) -> Vec<(f64, f64)> {
+        match self {
+            Input::Hold | Input::Linear | Input::History => vec![(t + h, h)],
+            Input::TwiceRate => vec![(t + 0.5 * h, 0.5 * h), (t + h, 0.5 * h)],
+            Input::GaussPoints => vec![(t + GAUSS_1 * h, 0.5 * h), (t + GAUSS_2 * h, 0.5 * h)],
+        }
     }
 }
 
-/// Propagates from `reference(0)` over `[0, t_end]` in `n` steps and returns the attitude error (rad) at the end.
-pub fn final_error<T: Real, S: Scheme, Z: Stabilizer<T>>(
-    scheme: S,
-    stabilizer: Z,
+/// What a run ends with.
+#[derive(Clone, Copy, Debug)]
+pub struct Outcome<T> {
+    /// The final attitude.
+    pub q: Quat<T>,
+    /// Steps taken (the History prelude's steps included).
+    pub steps: u64,
+}
+
+fn drive<T: Real, S: Scheme<T>, I: InputModel<T, Sample = GyroSample<T>>, Z: Stabilizer>(
+    mut p: Propagator<T, S, I, Z>,
     input: Input,
-    reference: &dyn Fn(f64) -> Quat<f64>,
+    q0: Quat<f64>,
     rate: &dyn Fn(f64) -> Vec3<f64>,
     t_end: f64,
     n: usize,
-) -> f64 {
+) -> Result<Outcome<T>, Error> {
     let h = t_end / n as f64;
-    let mut p = Propagator::new(Quat::<T>::from_f64(reference(0.0)), scheme, stabilizer).unwrap();
-    for i in 0..n {
-        step(&mut p, input, rate, i as f64 * h, h).unwrap();
+    let push = |p: &mut Propagator<T, S, I, Z>, (t, dt): (f64, f64)| {
+        p.push(
+            GyroSample::new(Vec3::<T>::from_f64(rate(t))),
+            T::from_f64(dt),
+        )
+    };
+    for s in input.prelude(h) {
+        push(&mut p, s)?;
     }
-    let q = p.attitude().to_f64();
-    // Compare directions: the error angle of the normalized attitude.
-    q.normalized().unwrap().angle_to(reference(t_end))
+    if input == Input::History {
+        // The prelude's two steps moved the attitude over [−2h, 0] with low-order start-up steps; the
+        // samples they left in the history are what matters. Start the run from the exact attitude.
+        p.set_attitude(Quat::<T>::from_f64(q0))?;
+    }
+    for i in 0..n {
+        for s in input.pushes(i as f64 * h, h) {
+            push(&mut p, s)?;
+        }
+    }
+    Ok(Outcome {
+        q: p.attitude(),
+        steps: p.steps(),
+    })
+}
+
+/// Propagates from `q0` over `[0, t_end]` in `n` steps of `input`, sampling `rate`, in precision `T`.
+pub fn propagate<T: Real, S: Scheme<T>, Z: Stabilizer>(
+    scheme: S,
+    stabilizer: Z,
+    input: Input,
+    q0: Quat<f64>,
+    rate: &dyn Fn(f64) -> Vec3<f64>,
+    t_end: f64,
+    n: usize,
+) -> Result<Outcome<T>, Error> {
+    let q = Quat::<T>::from_f64(q0);
+    match input {
+        Input::Hold => drive(
+            Propagator::new(q, scheme, Hold, stabilizer)?,
+            input,
+            q0,
+            rate,
+            t_end,
+            n,
+        ),
+        Input::Linear => drive(
+            Propagator::new(q, scheme, Linear::new(), stabilizer)?,
+            input,
+            q0,
+            rate,
+            t_end,
+            n,
+        ),
+        Input::History => drive(
+            Propagator::new(q, scheme, History::new(), stabilizer)?,
+            input,
+            q0,
+            rate,
+            t_end,
+            n,
+        ),
+        Input::TwiceRate => drive(
+            Propagator::new(q, scheme, TwiceRate::new(), stabilizer)?,
+            input,
+            q0,
+            rate,
+            t_end,
+            n,
+        ),
+        Input::GaussPoints => drive(
+            Propagator::new(q, scheme, GaussPoints::new(), stabilizer)?,
+            input,
+            q0,
+            rate,
+            t_end,
+            n,
+        ),
+    }
 }
 
 /// Least-squares slope of log(err) against log(h).
@@ -97,4 +197,11 @@ pub fn loglog_slope(hs: &[f64], errs: &[f64]) -> f64 {
     let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
     sxy / sxx
+}
+
+/// The whole propagator state as text: `Debug` prints every field, private ones included, and prints each
+/// float as its shortest round-trip decimal, so two equal strings mean bit-identical finite floats (and
+/// `-0.0` differs from `0.0`, unlike `==`).
+pub fn state<P: core::fmt::Debug>(p: &P) -> String {
+    format!("{p:?}")
 }
