@@ -1,12 +1,12 @@
 //! Stability atlas: the per-step norm factor and the attitude error of one held-rate step against H|ω|, for
-//! every scheme, measured with the unchecked scheme step (so it can go beyond the bounds), with the measured
+//! every scheme, measured with one unchecked step (`q + increment`, so it can go beyond the bounds), with the measured
 //! stability bound next to the one derived from the tableau.
 
+use crate::configs::scheme_name;
 use crate::plot::{plot, Axis, Series};
+use crate::unchecked::held_step;
 use crate::Ctx;
-use quatprop::rates::Hold;
-use quatprop::scheme::{Method, Scheme};
-use quatprop::stabilize::Off;
+use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::{Quat, Vec3};
 use std::fmt::Write as _;
 
@@ -22,32 +22,33 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
     let mut table = String::from(
         "| scheme | bound from the tableau (rad) | measured: first H|ω| where the norm factor crosses its level | agreement |\n|---|---|---|---|\n",
     );
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
+        let info = Scheme::<f64>::information(&m);
         let mut np = Vec::new();
         let mut ep = Vec::new();
         let mut crossed = None;
-        let level_is_two = m.step_angle_limit().is_finite() && m.norm_change(1e-2) > 0.0;
+        let level_is_two = info.step_angle_limit.is_finite() && info.norm_change(1e-2) > 0.0;
         for &a in &angles {
             ctx.tick();
             let q = Quat::<f64>::IDENTITY;
-            let next = m.advance(q, &Hold::new(axis * a), 1.0, &Off);
+            let next = held_step(&m, q, axis * a, 1.0);
             let f = next.norm_squared() - 1.0;
             let exact = Quat::from_rotation_vector(axis * a);
             let e = next.normalized().map_or(f64::NAN, |u| u.angle_to(exact));
             np.push((a, f.abs().max(1e-20)));
             ep.push((a, e.max(1e-20)));
-            let _ = writeln!(csv, "{},{a},{f},{e}", m.name());
+            let _ = writeln!(csv, "{},{a},{f},{e}", info.name);
             let level = if level_is_two { 1.0 } else { 0.0 };
             // 1e-12 stays clear of f64 rounding in the exact schemes' large-angle trigonometry.
             if crossed.is_none() && f > level + 1e-12 && a > 1e-3 {
                 crossed = Some(a);
             }
         }
-        let theory = m.step_angle_limit();
+        let theory = info.step_angle_limit;
         let _ = writeln!(
             table,
             "| {} | {} | {} | {} |",
-            m.name(),
+            info.name,
             if theory.is_finite() {
                 format!("{theory:.4}")
             } else {
@@ -62,8 +63,8 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
                 _ => "–".into(),
             }
         );
-        norm_series.push(Series::line(m.name(), np));
-        err_series.push(Series::line(m.name(), ep));
+        norm_series.push(Series::line(scheme_name(m), np));
+        err_series.push(Series::line(scheme_name(m), ep));
     }
     ctx.csv("stability_atlas.csv", &csv);
     ctx.plot(|dir| {

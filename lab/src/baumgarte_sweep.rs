@@ -1,15 +1,17 @@
 //! Baumgarte's gain k swept from 1e-4 up to divergence, in propagation (not the fixed-point map of Fig. 2):
-//! permanent rotation |ω| = 1 rad/s, f64, every Runge–Kutta scheme and the exponential map, stepped with the
-//! schemes' unchecked step (`Scheme::advance`) so the sweep can go past the library's refusal bound and find
-//! where the propagation really diverges; the propagator's own answer (accept or `GainBeyondStability`) is
-//! recorded for every k.
+//! permanent rotation |ω| = 1 rad/s, f64, every Runge–Kutta scheme (since quatprop 0.2 Baumgarte is a
+//! right-hand-side option of the Runge–Kutta engine, `scheme::Baumgarte`; the exponential map has none),
+//! stepped with one unchecked step (`q + increment`, [`crate::unchecked`]) so the sweep can go past the
+//! library's refusal bound and find where the propagation really diverges; the propagator's own answer
+//! (accept or `GainBeyondStability`) is recorded for every k.
 
 use crate::plot::{plot, Axis, Series};
+use crate::unchecked::held_step;
 use crate::Ctx;
-use quatprop::rates::Hold;
-use quatprop::scheme::{Euler, ExpMap, Rk2, Rk3, Rk4, Rk5, Scheme};
-use quatprop::stabilize::Baumgarte;
-use quatprop::{Error, Propagator, Quat, Vec3};
+use quatprop::input::Hold;
+use quatprop::scheme::{Baumgarte, Euler, Rk2, Rk3, Rk4, Rk5, RungeKutta};
+use quatprop::stabilize::Off;
+use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 use std::fmt::Write as _;
 
 const W: Vec3<f64> = Vec3::new(0.0, 0.6, 0.8);
@@ -26,14 +28,18 @@ enum Outcome {
     Escapes,
 }
 
+/// The scheme `s` with Baumgarte's term of gain `k` (k ≥ 0 throughout the sweep).
+fn with_gain<S: RungeKutta>(s: S, k: f64) -> Baumgarte<S, f64> {
+    Baumgarte::new(s, k).expect("finite k ≥ 0")
+}
+
 /// `steps` unchecked steps from the identity.
-fn propagate<S: Scheme>(s: S, k: f64, h: f64, steps: usize) -> Outcome {
-    let z = Baumgarte { k };
-    let rates = Hold::new(W);
+fn propagate<S: RungeKutta>(s: S, k: f64, h: f64, steps: usize) -> Outcome {
+    let b = with_gain(s, k);
     let mut q = Quat::<f64>::IDENTITY;
     let (mut n1, mut n2) = (0.0f64, 0.0f64);
     for _ in 0..steps {
-        q = s.advance(q, &rates, h, &z);
+        q = held_step(&b, q, W, h);
         let n = q.norm_error();
         if !n.is_finite() || n.abs() > 1.0 {
             return Outcome::Escapes;
@@ -42,7 +48,7 @@ fn propagate<S: Scheme>(s: S, k: f64, h: f64, steps: usize) -> Outcome {
     }
     let d_last = n1 - n2;
     // One more step tells a decaying alternation from a sustained one.
-    let n0 = s.advance(q, &rates, h, &z).norm_error();
+    let n0 = held_step(&b, q, W, h).norm_error();
     let d_next = n0 - n1;
     if d_last * d_next < 0.0 && d_next.abs() > 1e-13 + 1e-6 * n1.abs() {
         Outcome::Oscillates(n1.abs())
@@ -56,9 +62,9 @@ fn bounded(o: Outcome) -> bool {
 }
 
 /// What the propagator says to the first step at this k.
-fn library_accepts<S: Scheme>(s: S, k: f64, h: f64) -> Result<(), Error> {
-    let mut p = Propagator::new(Quat::<f64>::IDENTITY, s, Baumgarte { k })?;
-    p.step_hold(W, h)
+fn library_accepts<S: RungeKutta>(s: S, k: f64, h: f64) -> Result<(), Error> {
+    let mut p = Propagator::new(Quat::<f64>::IDENTITY, Baumgarte::new(s, k)?, Hold, Off)?;
+    p.push(GyroSample::new(W), h)
 }
 
 /// The edge between `good` (pred true) and `bad` (pred false) by bisection on a log scale, to 1e-5 relative.
@@ -92,7 +98,7 @@ struct Row {
     library_agrees: Option<bool>,
 }
 
-fn sweep_scheme<S: Scheme + Copy>(
+fn sweep_scheme<S: RungeKutta>(
     ctx: &mut Ctx,
     name: &'static str,
     s: S,
@@ -132,7 +138,7 @@ fn sweep_scheme<S: Scheme + Copy>(
         .find(|&i| !matches!(outcomes[i], Outcome::Settles(_)))
         .filter(|&i| i > start && matches!(outcomes[i], Outcome::Oscillates(_)))
         .map(|i| edge(ks[i - 1], ks[i], settles));
-    let refuses_above = s.gain_step_limit() / (4.0 * h);
+    let refuses_above = with_gain(s, 0.0).gain_step_limit() / (4.0 * h);
     let step_refused = matches!(
         library_accepts(s, 0.0, h),
         Err(Error::StepAngleBeyondStability { .. })
@@ -177,7 +183,6 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
         rows.push(sweep_scheme(ctx, "Rk3", Rk3, hw, &ks, steps));
         rows.push(sweep_scheme(ctx, "Rk4", Rk4, hw, &ks, steps));
         rows.push(sweep_scheme(ctx, "Rk5", Rk5, hw, &ks, steps));
-        rows.push(sweep_scheme(ctx, "ExpMap", ExpMap, hw, &ks, steps));
     }
     let mut csv = String::from("scheme,h_omega,k,abs_N_after_steps\n");
     let mut table = String::from(
@@ -260,14 +265,17 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
     format!(
         "### Baumgarte k swept to divergence, in propagation\n\n![Baumgarte sweep](baumgarte_sweep.png)\n\n\
          Permanent rotation |ω| = 1 rad/s, f64, {steps} steps per k from the identity, k from 1e-4 to 1e3 /s \
-         ({points} values, log-spaced; the divergence point refined by bisection to 1e-5). Stepped with the \
-         schemes' unchecked step so the sweep can pass the library's bound. A run escapes when |N| leaves [−1, 1] \
+         ({points} values, log-spaced; the divergence point refined by bisection to 1e-5). Stepped with \
+         unchecked steps (`q + increment` of the library's `Baumgarte(scheme, k)`) so the sweep can pass the \
+         library's bound. A run escapes when |N| leaves [−1, 1] \
          or stops being finite; it oscillates when N still alternates without decaying after the run (the fixed \
          point has lost stability, the seed's Fig. 2 divergence: 7.197 for RK4 at H|ω| = 0.1 there, 8.53 here \
          where N(0) = 0 starts it off the fixed point). The propagator refuses (`GainBeyondStability`) from \
          4kH above `gain_step_limit`, half the scheme's real-axis stability limit — checked on both sides of it \
          for every row. Half, because this sweep found Rk5 escaping at 0.82–0.96 of its real-axis limit: the \
          nonlinear term settles on N∞ ≠ 0, where its effective stiffness is 4k(1 + 2N∞). Ratio > 1: the refusal \
-         comes first. The exponential map integrates the radial term exactly and never diverges. CSV: `baumgarte_sweep.csv`.\n\n{table}\n{verdict}\n"
+         comes first. Runge–Kutta schemes only: since quatprop 0.2 Baumgarte is a right-hand-side option of the \
+         Runge–Kutta engine (`scheme::Baumgarte`), so the exponential map's rows (it integrated the radial term \
+         exactly and never diverged) are gone. CSV: `baumgarte_sweep.csv`.\n\n{table}\n{verdict}\n"
     )
 }

@@ -1,20 +1,38 @@
 //! The configurations the studies compare, and one integrator type that runs any of them over a sample stream.
 //!
 //! A configuration is either quatprop (scheme × stabilizer × input model × accumulator) or a peer. Every
-//! quatprop configuration is monomorphized (the zero-sized scheme and stabilizer types a firmware would name),
-//! so host timings are those of the code a user links, not of an enum dispatch. Peers that exist as Rust
+//! quatprop configuration is monomorphized (the scheme, input-model and stabilizer types a firmware would
+//! name), so host timings are those of the code a user links, not of an enum dispatch. Baumgarte is, since
+//! quatprop 0.2, a right-hand-side option of the Runge–Kutta schemes (`scheme::Baumgarte` with `stabilize::Off`):
+//! a Baumgarte configuration of an exponential-map scheme does not exist and is not built. Peers that exist as Rust
 //! crates are used as crates (`ahrs`, `nalgebra`, `glam`); Fusion (C) is implemented from its published
 //! formulas in [`crate::peers`].
 //!
 //! Streams: a sample is a body rate (rad/s) and the time since the previous sample (s; ignored for the first
-//! sample of a stream). Every step an integrator refuses is counted with its first error: nothing is dropped
-//! silently.
+//! sample of a stream). Each sample is one `Propagator::push`. Every step an integrator refuses is counted with
+//! its first error: nothing is dropped silently.
 
 use crate::peers;
-use quatprop::accumulate::{Accumulator, Kahan, Plain};
-use quatprop::scheme::{Cf4, Euler, ExpMap, Magnus4, Method, Rk2, Rk3, Rk4, Rk5, Scheme};
-use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Stabilizer};
-use quatprop::{Error, Propagator, Quat, Real, SampleHistory, Vec3};
+use quatprop::accumulate::{Accumulator, Kahan};
+use quatprop::input::{History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::scheme::{
+    Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
+};
+use quatprop::stabilize::{Every, FirstOrder, Normalize, Off, Stabilizer};
+use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
+
+/// A scheme's short name (`"Rk4"`), from the library's record.
+pub fn scheme_name(m: SchemeKind) -> &'static str {
+    Scheme::<f64>::information(&m).name
+}
+
+/// Every scheme whose right-hand side can carry Baumgarte's term (the explicit Runge–Kutta schemes).
+pub fn is_runge_kutta(m: SchemeKind) -> bool {
+    matches!(
+        m,
+        SchemeKind::Euler | SchemeKind::Rk2 | SchemeKind::Rk3 | SchemeKind::Rk4 | SchemeKind::Rk5
+    )
+}
 
 /// One gyro sample of a stream: rate (rad/s, body frame) and the time since the previous sample (s).
 #[derive(Clone, Copy, Debug)]
@@ -23,18 +41,19 @@ pub struct Sample<T> {
     pub dt: T,
 }
 
-/// How a quatprop configuration turns the samples into a rate model for each step.
+/// The input model of a quatprop configuration: how the samples become a rate function for each step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Input {
-    /// `step_hold` with the newest sample (what Fusion and Madgwick do).
+    /// `input::Hold`: the newest sample held over its interval (what Fusion and Madgwick do).
     Hold,
-    /// `step_linear` between the two samples bracketing the step.
+    /// `input::Linear`: linear between the two samples bracketing the step.
     Linear,
-    /// `step_history`: the last four samples, fourth order, no latency. After a gap (a step longer than
-    /// 1.5 nominal periods) the history restarts and the gap is bridged by a linear step.
+    /// `input::History`: the cubic through the last four samples, fourth order, no latency. The samples must
+    /// be equally spaced: whenever dt changes (a dropped sample's gap, timing jitter) the model restarts at
+    /// the last sample and bridges the interval with a linear step over its true length.
     History,
-    /// `step_mid`: one step per two sample intervals with the quadratic through three samples (the same
-    /// samples, half the steps).
+    /// `input::TwiceRate`: one step per two sample intervals with the quadratic through three samples (the
+    /// same samples, half the steps).
     Mid,
 }
 
@@ -58,7 +77,8 @@ pub enum Stab {
     FirstOrder,
     /// Exact normalization after every n-th step.
     Every(u32),
-    /// Baumgarte with gain k (1/s).
+    /// Baumgarte with gain k (1/s): the scheme wrapped in `scheme::Baumgarte` (Runge–Kutta schemes only),
+    /// stabilizer `Off`.
     Baumgarte(f64),
 }
 
@@ -119,7 +139,7 @@ impl Peer {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Config {
     Quatprop {
-        method: Method,
+        method: SchemeKind,
         stab: Stab,
         input: Input,
         compensated: bool,
@@ -128,7 +148,7 @@ pub enum Config {
 }
 
 impl Config {
-    pub const fn qp(method: Method, stab: Stab, input: Input) -> Self {
+    pub const fn qp(method: SchemeKind, stab: Stab, input: Input) -> Self {
         Config::Quatprop {
             method,
             stab,
@@ -146,7 +166,7 @@ impl Config {
                 compensated,
             } => format!(
                 "quatprop {} {} + {}{}",
-                method.name(),
+                scheme_name(method),
                 input.name(),
                 stab.name(),
                 if compensated { ", compensated" } else { "" }
@@ -157,6 +177,18 @@ impl Config {
 
     pub fn is_peer(&self) -> bool {
         matches!(self, Config::Peer(_))
+    }
+
+    /// Whether quatprop has this configuration: Baumgarte wraps the Runge–Kutta schemes only.
+    pub fn exists(&self) -> bool {
+        match *self {
+            Config::Quatprop {
+                method,
+                stab: Stab::Baumgarte(_),
+                ..
+            } => is_runge_kutta(method),
+            _ => true,
+        }
     }
 
     /// Steps per sample interval (½ for the mid input, 1 otherwise).
@@ -170,7 +202,7 @@ impl Config {
     }
 
     /// An integrator starting at `q0` for samples `nominal_dt` apart, or why there is none (Fusion has no
-    /// f64 version; the library refused the configuration).
+    /// f64 version; Baumgarte with a scheme that is not Runge–Kutta; the library refused the configuration).
     pub fn build<T: LabReal>(
         &self,
         q0: Quat<T>,
@@ -183,7 +215,7 @@ impl Config {
                 input,
                 compensated,
             } => build_quatprop(method, stab, input, compensated, q0, nominal_dt)
-                .map_err(|e| format!("{}: {e:?}", self.label())),
+                .map_err(|e| format!("{}: {e}", self.label())),
             Config::Peer(p) => T::peer(p, q0, nominal_dt).ok_or_else(|| {
                 format!(
                     "{} has no {} version",
@@ -240,77 +272,88 @@ impl LabReal for f64 {
 
 // ------------------------------------------------------------------------------------------------ quatprop
 
-struct QuatpropRun<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> {
-    p: Propagator<T, S, Z, A>,
-    input: Input,
-    prev: Option<Vec3<T>>,
-    mid: Option<(Vec3<T>, T)>,
-    history: SampleHistory<T>,
-    gap: T,
+/// The lab's four input models as the library's types, with how the lab feeds them a stream.
+trait LabInput<T: Real>: InputModel<T, Sample = GyroSample<T>> + 'static {
+    /// The model before any sample.
+    fn fresh() -> Self;
+    /// The stream's first sample only starts it and is not pushed: [`Hold`] steps on every push, and the
+    /// first sample of a stream has no interval before it.
+    const SKIP_FIRST: bool = false;
+    /// After a refused step the stream continues from the refused sample (the interval is dropped and
+    /// counted, the lab's policy since 0.1): the model is restarted and the sample pushed as a start. The
+    /// library leaves a refused sample's model untouched, which for [`Linear`] and [`TwiceRate`] would make
+    /// the next step span the refused interval too. [`History`] keeps its 0.1 behaviour unchanged (the
+    /// refused sample is not part of the history).
+    const RESTART_ON_REFUSAL: bool = false;
+}
+
+impl<T: Real> LabInput<T> for Hold {
+    fn fresh() -> Self {
+        Hold
+    }
+    const SKIP_FIRST: bool = true;
+}
+impl<T: Real> LabInput<T> for Linear<T> {
+    fn fresh() -> Self {
+        Linear::new()
+    }
+    const RESTART_ON_REFUSAL: bool = true;
+}
+impl<T: Real> LabInput<T> for History<T> {
+    fn fresh() -> Self {
+        History::new()
+    }
+}
+impl<T: Real> LabInput<T> for TwiceRate<T> {
+    fn fresh() -> Self {
+        TwiceRate::new()
+    }
+    const RESTART_ON_REFUSAL: bool = true;
+}
+
+struct QuatpropRun<T: Real, S: Scheme<T>, I: LabInput<T>, Z: Stabilizer, A: Accumulator<T>> {
+    p: Propagator<T, S, I, Z, A>,
+    /// The first sample of the stream has been seen.
+    started: bool,
+    /// The `dt` passed with a sample that only starts the input model (any valid value: it is not used).
+    start_dt: T,
     refused: u64,
     first_error: Option<Error>,
 }
 
-impl<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>> Integrator<T>
-    for QuatpropRun<T, S, Z, A>
+impl<T: Real, S: Scheme<T>, I: LabInput<T>, Z: Stabilizer, A: Accumulator<T>> Integrator<T>
+    for QuatpropRun<T, S, I, Z, A>
 {
     fn feed(&mut self, samples: &[Sample<T>]) {
-        // One loop per input model, so the step loop itself has no dispatch; the state lives in locals
-        // during the loop (as it would in a firmware's interrupt handler) and is written back once.
-        let (mut p, mut prev, mut history) = (self.p, self.prev, self.history);
+        // The propagator (its input model included) lives in a local during the loop (as it would in a
+        // firmware's interrupt handler) and is written back once.
+        let mut p = self.p;
         let (mut refused, mut first) = (0u64, None);
-        // Cold: only refused steps reach the body.
-        let mut note = |r: Result<(), Error>| {
-            if let Err(e) = r {
-                refuse(&mut refused, &mut first, e);
-            }
-        };
-        match self.input {
-            Input::Hold => {
-                for s in samples {
-                    if prev.is_some() {
-                        note(p.step_hold(s.w, s.dt));
-                    }
-                    prev = Some(s.w);
-                }
-            }
-            Input::Linear => {
-                for s in samples {
-                    if let Some(w0) = prev {
-                        note(p.step_linear(w0, s.w, s.dt));
-                    }
-                    prev = Some(s.w);
-                }
-            }
-            Input::History => {
-                for s in samples {
-                    match prev {
-                        Some(w0) if s.dt > self.gap => {
-                            // A gap: bridge it linearly, restart the history at this sample.
-                            note(p.step_linear(w0, s.w, s.dt));
-                            history.clear();
-                            history.push(s.w);
-                        }
-                        _ => note(p.step_history(&mut history, s.w, s.dt)),
-                    }
-                    prev = Some(s.w);
-                }
-            }
-            Input::Mid => {
-                for s in samples {
-                    match (prev, self.mid) {
-                        (None, _) => prev = Some(s.w),
-                        (Some(_), None) => self.mid = Some((s.w, s.dt)),
-                        (Some(w0), Some((wm, dt1))) => {
-                            note(p.step_mid(w0, wm, s.w, dt1 + s.dt));
-                            prev = Some(s.w);
-                            self.mid = None;
-                        }
+        let mut rest = samples;
+        if !self.started {
+            if let Some((s0, tail)) = samples.split_first() {
+                self.started = true;
+                rest = tail;
+                if !I::SKIP_FIRST {
+                    // Only starts the model; the first sample's dt is meaningless (0 in sensor streams).
+                    if let Err(e) = p.push(GyroSample::new(s0.w), self.start_dt) {
+                        refuse(&mut refused, &mut first, e);
                     }
                 }
             }
         }
-        (self.p, self.prev, self.history) = (p, prev, history);
+        let start_dt = self.start_dt;
+        for s in rest {
+            if let Err(e) = p.push(GyroSample::new(s.w), s.dt) {
+                // Cold: only refused steps reach the body.
+                refuse(&mut refused, &mut first, e);
+                if I::RESTART_ON_REFUSAL {
+                    p.restart_input();
+                    let _ = p.push(GyroSample::new(s.w), start_dt);
+                }
+            }
+        }
+        self.p = p;
         self.refused += refused;
         if self.first_error.is_none() {
             self.first_error = first;
@@ -331,34 +374,27 @@ fn refuse(count: &mut u64, first: &mut Option<Error>, e: Error) {
     first.get_or_insert(e);
 }
 
-fn boxed<T: Real, S: Scheme + 'static, Z: Stabilizer<T> + 'static>(
+fn boxed<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'static>(
     q0: Quat<T>,
     s: S,
     z: Z,
-    input: Input,
     compensated: bool,
     nominal_dt: T,
 ) -> Result<Box<dyn Integrator<T>>, Error> {
-    let gap = nominal_dt * <T as Real>::from_f64(1.5);
+    let p = Propagator::new(q0, s, I::fresh(), z)?;
     Ok(if compensated {
-        Box::new(QuatpropRun::<T, S, Z, Kahan<T>> {
-            p: Propagator::new_compensated(q0, s, z)?,
-            input,
-            prev: None,
-            mid: None,
-            history: SampleHistory::new(),
-            gap,
+        Box::new(QuatpropRun {
+            p: p.with_accumulator(Kahan::new()),
+            started: false,
+            start_dt: nominal_dt,
             refused: 0,
             first_error: None,
         })
     } else {
-        Box::new(QuatpropRun::<T, S, Z, Plain> {
-            p: Propagator::new(q0, s, z)?,
-            input,
-            prev: None,
-            mid: None,
-            history: SampleHistory::new(),
-            gap,
+        Box::new(QuatpropRun {
+            p,
+            started: false,
+            start_dt: nominal_dt,
             refused: 0,
             first_error: None,
         })
@@ -366,44 +402,67 @@ fn boxed<T: Real, S: Scheme + 'static, Z: Stabilizer<T> + 'static>(
 }
 
 fn build_quatprop<T: Real>(
-    method: Method,
+    method: SchemeKind,
     stab: Stab,
     input: Input,
     compensated: bool,
     q0: Quat<T>,
     nominal_dt: T,
-) -> Result<Box<dyn Integrator<T>>, Error> {
+) -> Result<Box<dyn Integrator<T>>, String> {
+    macro_rules! with_input {
+        ($s:expr, $z:expr) => {
+            match input {
+                Input::Hold => boxed::<T, _, Hold, _>(q0, $s, $z, compensated, nominal_dt),
+                Input::Linear => boxed::<T, _, Linear<T>, _>(q0, $s, $z, compensated, nominal_dt),
+                Input::History => boxed::<T, _, History<T>, _>(q0, $s, $z, compensated, nominal_dt),
+                Input::Mid => boxed::<T, _, TwiceRate<T>, _>(q0, $s, $z, compensated, nominal_dt),
+            }
+            .map_err(|e| format!("{e:?}"))
+        };
+    }
+    // A post-step stabilizer with any scheme; Baumgarte (a right-hand side) only with a Runge–Kutta scheme.
     macro_rules! with_stab {
-        ($s:expr) => {
+        ($s:expr, rk) => {
             match stab {
-                Stab::Off => boxed(q0, $s, Off, input, compensated, nominal_dt),
-                Stab::Normalize => boxed(q0, $s, Normalize, input, compensated, nominal_dt),
-                Stab::FirstOrder => boxed(q0, $s, FirstOrder, input, compensated, nominal_dt),
-                Stab::Every(n) => boxed(q0, $s, Every(n), input, compensated, nominal_dt),
-                Stab::Baumgarte(k) => boxed(
-                    q0,
-                    $s,
-                    Baumgarte {
-                        k: <T as Real>::from_f64(k),
-                    },
-                    input,
-                    compensated,
-                    nominal_dt,
-                ),
+                Stab::Baumgarte(k) => {
+                    let b = Baumgarte::new($s, <T as Real>::from_f64(k))
+                        .map_err(|e| format!("{e:?}"))?;
+                    with_input!(b, Off)
+                }
+                _ => with_stab!($s, post_step),
+            }
+        };
+        ($s:expr, exp) => {
+            match stab {
+                Stab::Baumgarte(_) => Err(BAUMGARTE_RK_ONLY.to_string()),
+                _ => with_stab!($s, post_step),
+            }
+        };
+        ($s:expr, post_step) => {
+            match stab {
+                Stab::Off => with_input!($s, Off),
+                Stab::Normalize => with_input!($s, Normalize),
+                Stab::FirstOrder => with_input!($s, FirstOrder),
+                Stab::Every(n) => with_input!($s, Every(n)),
+                Stab::Baumgarte(_) => Err(BAUMGARTE_RK_ONLY.to_string()),
             }
         };
     }
     match method {
-        Method::Euler => with_stab!(Euler),
-        Method::Rk2 => with_stab!(Rk2),
-        Method::Rk3 => with_stab!(Rk3),
-        Method::Rk4 => with_stab!(Rk4),
-        Method::Rk5 => with_stab!(Rk5),
-        Method::ExpMap => with_stab!(ExpMap),
-        Method::Magnus4 => with_stab!(Magnus4),
-        Method::Cf4 => with_stab!(Cf4),
+        SchemeKind::Euler => with_stab!(Euler, rk),
+        SchemeKind::Rk2 => with_stab!(Rk2, rk),
+        SchemeKind::Rk3 => with_stab!(Rk3, rk),
+        SchemeKind::Rk4 => with_stab!(Rk4, rk),
+        SchemeKind::Rk5 => with_stab!(Rk5, rk),
+        SchemeKind::ExpMap => with_stab!(ExpMap, exp),
+        SchemeKind::Magnus4 => with_stab!(Magnus4, exp),
+        SchemeKind::Cf4 => with_stab!(Cf4, exp),
     }
 }
+
+/// Why a Baumgarte configuration of an exponential-map scheme cannot be built.
+const BAUMGARTE_RK_ONLY: &str =
+    "Baumgarte is a right-hand-side option of the Runge–Kutta schemes only (quatprop 0.2)";
 
 // ------------------------------------------------------------------------------------------------ peers
 

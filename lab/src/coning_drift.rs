@@ -4,9 +4,11 @@
 //! checkpoints; p from the λ dependence over λ = 0.05…0.2, c at λ = 0.05.
 
 use crate::Ctx;
-use quatprop::scheme::Method;
+use quatprop::accumulate::Kahan;
+use quatprop::input::{History, InputModel, Linear, TwiceRate};
+use quatprop::scheme::SchemeKind;
 use quatprop::stabilize::Off;
-use quatprop::{Propagator, Quat, SampleHistory, Vec3};
+use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 use std::fmt::Write as _;
 
 const ALPHA: f64 = 1e-3;
@@ -35,27 +37,72 @@ enum Input {
     Mid,
 }
 
+fn push<I: InputModel<f64, Sample = GyroSample<f64>>>(
+    p: &mut Propagator<f64, SchemeKind, I, Off, Kahan<f64>>,
+    w: Vec3<f64>,
+    dt: f64,
+) -> Result<(), Error> {
+    p.push(GyroSample::new(w), dt)
+}
+
 /// Drift rate (rad/s) about the cone axis with `per_period` steps per period over `periods` periods.
-fn drift(m: Method, input: Input, per_period: usize, periods: usize) -> f64 {
+fn drift(m: SchemeKind, input: Input, per_period: usize, periods: usize) -> f64 {
     let h = 1.0 / per_period as f64;
-    let mut p = Propagator::new_compensated(attitude(0.0), m, Off).unwrap();
-    let mut hist = SampleHistory::new();
-    for i in -3i64..=0 {
-        hist.push(rate(i as f64 * h));
+    let q0 = attitude(0.0);
+    match input {
+        Input::Linear => {
+            // The first sample (t = 0) only starts the model; each step then pushes its end sample.
+            let p = Propagator::new(q0, m, Linear::new(), Off).unwrap();
+            let mut p = p.with_accumulator(Kahan::new());
+            if push(&mut p, rate(0.0), h).is_err() {
+                return f64::NAN;
+            }
+            measure(p, per_period, periods, h, |p, t| push(p, rate(t + h), h))
+        }
+        Input::History => {
+            // The history starts full: the samples at −3h … 0 (the first only starts it, the steps over
+            // [−3h, 0] are discarded with that propagator).
+            let mut warm = Propagator::new(q0, m, History::new(), Off).unwrap();
+            for i in -3i64..=0 {
+                if warm.push(GyroSample::new(rate(i as f64 * h)), h).is_err() {
+                    return f64::NAN;
+                }
+            }
+            let p = Propagator::new(q0, m, warm.input(), Off).unwrap();
+            let p = p.with_accumulator(Kahan::new());
+            measure(p, per_period, periods, h, |p, t| push(p, rate(t + h), h))
+        }
+        Input::Mid => {
+            // Gyro at twice the step rate: the start sample, then (middle, end) per step, each h/2 apart.
+            let p = Propagator::new(q0, m, TwiceRate::new(), Off).unwrap();
+            let mut p = p.with_accumulator(Kahan::new());
+            if push(&mut p, rate(0.0), 0.5 * h).is_err() {
+                return f64::NAN;
+            }
+            measure(p, per_period, periods, h, |p, t| {
+                push(p, rate(t + 0.5 * h), 0.5 * h)?;
+                push(p, rate(t + h), 0.5 * h)
+            })
+        }
     }
+}
+
+/// Runs `per_period · periods` steps (`step(p, t)` feeds the step starting at t) and returns the slope of
+/// the axial error from the end of the first period to the end.
+fn measure<I: InputModel<f64, Sample = GyroSample<f64>>>(
+    mut p: Propagator<f64, SchemeKind, I, Off, Kahan<f64>>,
+    per_period: usize,
+    periods: usize,
+    h: f64,
+    step: impl Fn(&mut Propagator<f64, SchemeKind, I, Off, Kahan<f64>>, f64) -> Result<(), Error>,
+) -> f64 {
     let axial = |q: Quat<f64>, t: f64| (attitude(t).conjugate() * q).to_rotation_vector().z;
     let mut first = (0.0, 0.0);
     for k in 0..per_period * periods {
         if k == per_period {
             first = (axial(p.attitude(), k as f64 * h), k as f64 * h);
         }
-        let t = k as f64 * h;
-        let r = match input {
-            Input::Linear => p.step_linear(rate(t), rate(t + h), h),
-            Input::History => p.step_history(&mut hist, rate(t + h), h),
-            Input::Mid => p.step_mid(rate(t), rate(t + 0.5 * h), rate(t + h), h),
-        };
-        if r.is_err() {
+        if step(&mut p, k as f64 * h).is_err() {
             return f64::NAN;
         }
     }
@@ -70,13 +117,13 @@ pub fn coning_drift(ctx: &mut Ctx, quick: bool) -> String {
         "| scheme | input | exponent p (fit over λ = 0.05…0.2) | coefficient c at λ = 0.05 (drift = c·α²Ω·λ^p) |\n|---|---|---|---|\n",
     );
     let mut csv = String::from("scheme,input,lambda,drift_rad_per_s\n");
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         for (input, name) in [
             (Input::Linear, "linear"),
             (Input::History, "history"),
             (Input::Mid, "mid"),
         ] {
-            if m == Method::Euler && input != Input::Linear {
+            if m == SchemeKind::Euler && input != Input::Linear {
                 continue;
             }
             ctx.tick();

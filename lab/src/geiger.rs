@@ -1,11 +1,12 @@
 //! The seed paper's figures: N(t) under RK4 (Fig. 1) and the limit N∞ against the Baumgarte gain k (Fig. 2).
 
 use crate::plot::{plot, Axis, Series};
+use crate::unchecked::held_step;
 use crate::Ctx;
-use quatprop::rates::Hold;
-use quatprop::scheme::{Rk4, Scheme};
-use quatprop::stabilize::{Baumgarte, Normalize, Off};
-use quatprop::{Propagator, Quat, Vec3};
+use quatprop::input::Hold;
+use quatprop::scheme::{Baumgarte, Rk4};
+use quatprop::stabilize::{Normalize, Off};
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use std::fmt::Write as _;
 
 /// Fig. 1: constant rotation |ω| = 1 rad/s about z, 30 steps per period, 30 periods (the seed's setting);
@@ -15,15 +16,16 @@ pub fn figure1(ctx: &mut Ctx) -> String {
     let w = Vec3::new(0.0, 0.0, 1.0);
     let steps = 900;
     let beta = (h.powi(6) / 4608.0) * (1.0 - h * h / 32.0);
-    let mut off = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Off).unwrap();
-    let mut baum = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Baumgarte { k: 0.5 }).unwrap();
-    let mut norm = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Normalize).unwrap();
+    let mut off = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Hold, Off).unwrap();
+    let rk4_baumgarte = Baumgarte::new(Rk4, 0.5).unwrap();
+    let mut baum = Propagator::new(Quat::<f64>::IDENTITY, rk4_baumgarte, Hold, Off).unwrap();
+    let mut norm = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Hold, Normalize).unwrap();
     let (mut a, mut b, mut c, mut d) = (vec![], vec![], vec![], vec![]);
     let mut csv = String::from("t,N_off,N_closed_form,N_baumgarte,N_normalize\n");
     for j in 1..=steps {
-        off.step_hold(w, h).unwrap();
-        baum.step_hold(w, h).unwrap();
-        norm.step_hold(w, h).unwrap();
+        off.push(GyroSample::new(w), h).unwrap();
+        baum.push(GyroSample::new(w), h).unwrap();
+        norm.push(GyroSample::new(w), h).unwrap();
         let t = j as f64 * h;
         let closed = (1.0 - beta).powi(j) - 1.0;
         a.push((t, -off.norm_error()));
@@ -75,17 +77,20 @@ pub fn figure1(ctx: &mut Ctx) -> String {
 }
 
 fn first_step_n(k: f64, h: f64) -> f64 {
-    let mut p = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Baumgarte { k }).unwrap();
-    p.step_hold(Vec3::new(0.0, 0.0, 1.0), h).unwrap();
+    let b = Baumgarte::new(Rk4, k).unwrap();
+    let mut p = Propagator::new(Quat::<f64>::IDENTITY, b, Hold, Off).unwrap();
+    p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0)), h)
+        .unwrap();
     p.norm_error()
 }
 
 /// One RK4 + Baumgarte step of a permanent rotation about z from |q|² = 1 + n: returns the new N.
-/// By symmetry the map depends on N only (the seed's eq. (9)); computed with the unchecked scheme step.
+/// By symmetry the map depends on N only (the seed's eq. (9)); computed with one unchecked step
+/// (`q + scheme.increment(…)`, [`crate::unchecked`]).
 fn step_map(k: f64, h: f64, n: f64) -> f64 {
     let q = Quat::new((1.0 + n).sqrt(), 0.0, 0.0, 0.0);
-    let next = Rk4.advance(q, &Hold::new(Vec3::new(0.0, 0.0, 1.0)), h, &Baumgarte { k });
-    next.norm_error()
+    let b = Baumgarte::new(Rk4, k).expect("k > 0");
+    held_step(&b, q, Vec3::new(0.0, 0.0, 1.0), h).norm_error()
 }
 
 /// N∞: the fixed point of the step map near 0 (Newton on F(N) − N with a numerical derivative), and whether
@@ -120,7 +125,7 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
     let mut out = String::from(
         "### The seed's Fig. 2: N∞ against the Baumgarte gain k\n\n![N∞(k)](geiger_fig2.png)\n\n\
          Permanent rotation |ω| = 1 rad/s under RK4. N∞ is the fixed point of the per-step map N → F(N) (the seed's \
-         eq. (9), evaluated with the library's unchecked step), found by Newton iteration; it is marked divergent \
+         eq. (9), evaluated as one unchecked step `q + increment` of the library's `Baumgarte(Rk4, k)`), found by Newton iteration; it is marked divergent \
          where |F'(N∞)| ≥ 1. The optimal gains are the zeros of N∞(k), located by bisection on sign changes.\n\n\
          | H|ω| | optimal k₁ | optimal k₂ | iteration diverges for k above | library refuses 4kH > 1.393 (half RK4's real-axis interval) above k = |\n|---|---|---|---|---|\n",
     );
@@ -164,7 +169,7 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
             fmt(roots.first()),
             fmt(roots.get(1)),
             diverge_at.map_or("–".to_string(), |k| format!("{k:.3}")),
-            Rk4.gain_step_limit() / (4.0 * hw)
+            Baumgarte::new(Rk4, 0.0).expect("k = 0").gain_step_limit() / (4.0 * hw)
         );
         series.push(Series::line(format!("H|w| = {hw:.3}"), pts));
     }

@@ -17,9 +17,10 @@ mod rigid_body;
 mod scene_table;
 mod scenes;
 mod sensor;
+mod unchecked;
 mod work_precision;
 
-use quatprop::scheme::Scheme as _;
+use quatprop::scheme::SchemeKind;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -93,7 +94,7 @@ fn usage() -> ! {
          scenes          every scene x the comparison set at 1 kHz, f32\n\
          sensor          sensor realism: noise, bias, 16-bit counts, saturation, dropped samples, dt jitter\n\
          coning-drift    coning drift coefficient of every rate scheme and input model\n\
-         long-horizon    error and |N| growth to 1e8 steps (1e9 with --long), f32 and f64, every stabilizer\n\
+         long-horizon    error and |N| growth to 1e8 steps (1e9 with --long), f32 and f64, every post-step stabilizer\n\
          options:\n\
          --quick                 small grids and horizons (what CI runs)\n\
          --long                  long-horizon to 1e9 steps\n\
@@ -101,6 +102,7 @@ fn usage() -> ! {
          --scene a,b             scenes by key: {}\n\
          --schemes a,b           {}\n\
          --stabilizers a,b       Off, Normalize, FirstOrder, Every16 (or EveryN), Baumgarte (k = 0.5) or Baumgarte=K\n\
+         \x20                       (Baumgarte: the Runge-Kutta schemes only)\n\
          --inputs a,b            hold, linear, history, mid\n\
          --precision a,b         f32, f64\n\
          --rates a,b             gyro sample rates (Hz) of a work-precision sweep\n\
@@ -111,9 +113,9 @@ fn usage() -> ! {
             .map(|s| s.key())
             .collect::<Vec<_>>()
             .join(", "),
-        quatprop::scheme::Method::ALL
+        SchemeKind::ALL
             .iter()
-            .map(|m| m.name())
+            .map(|&m| configs::scheme_name(m))
             .collect::<Vec<_>>()
             .join(", ")
     );
@@ -177,9 +179,9 @@ fn main() {
             "--scene" => opt.scenes = list(value, "scene", |s| Some(s.to_string())),
             "--schemes" => {
                 opt.methods = list(value, "scheme", |s| {
-                    quatprop::scheme::Method::ALL
+                    SchemeKind::ALL
                         .into_iter()
-                        .find(|m| m.name().eq_ignore_ascii_case(s))
+                        .find(|&m| configs::scheme_name(m).eq_ignore_ascii_case(s))
                 })
             }
             "--stabilizers" => opt.stabs = list(value, "stabilizer", parse_stab),

@@ -1,6 +1,24 @@
 //! Scenes with exact references: attitude q(t) and body rate ω(t) in closed form.
 
-use quatprop::{Quat, Vec3};
+use quatprop::input::GaussPoints;
+use quatprop::scheme::Scheme;
+use quatprop::stabilize::Stabilizer;
+use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
+
+/// The two-point Gauss–Legendre nodes `½ ∓ √3/6` as fractions of a step (quatprop 0.2 keeps its own copy
+/// crate-private; these are the same literals).
+pub const GAUSS_NODES: [f64; 2] = [0.5 - 0.288_675_134_594_812_9, 0.5 + 0.288_675_134_594_812_9];
+
+/// One reference step of `h` (s) through a Gauss-point propagator: the rates `rate(c)` at the two nodes
+/// (`c` the fraction of the step), each pushed with dt = h/2; the second push closes the step.
+pub fn gauss_step<S: Scheme<f64>, Z: Stabilizer>(
+    p: &mut Propagator<f64, S, GaussPoints<f64>, Z>,
+    rate: impl Fn(f64) -> Vec3<f64>,
+    h: f64,
+) -> Result<(), Error> {
+    p.push(GyroSample::new(rate(GAUSS_NODES[0])), 0.5 * h)?;
+    p.push(GyroSample::new(rate(GAUSS_NODES[1])), 0.5 * h)
+}
 
 /// A motion with an exact attitude and body rate.
 pub trait Scene {

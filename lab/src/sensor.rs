@@ -5,11 +5,11 @@
 //! times, integrated in f64 by Magnus-4 with 16 substeps per sample interval (checked against 8 in the report).
 
 use crate::configs::{Config, Input, Peer, Sample, Stab};
-use crate::scenes::Scene;
+use crate::scenes::{gauss_step, Scene};
 use crate::work_precision::attitude_error;
 use crate::Ctx;
-use quatprop::rates::{GAUSS_1, GAUSS_2};
-use quatprop::scheme::{Magnus4, Method};
+use quatprop::input::GaussPoints;
+use quatprop::scheme::{Magnus4, SchemeKind};
 use quatprop::stabilize::Normalize;
 use quatprop::{Propagator, Quat, Vec3};
 use std::fmt::Write as _;
@@ -204,7 +204,7 @@ fn stream_rate(s: &Stream, k: usize, t: f64) -> Vec3<f64> {
 /// The stream integrated "exactly": [`stream_rate`] integrated in f64 by Magnus-4 with `sub` substeps per
 /// sample interval; attitudes after each sample index in `at`.
 fn stream_reference(q0: Quat<f64>, s: &Stream, at: &[usize], sub: usize) -> Vec<Quat<f64>> {
-    let Ok(mut p) = Propagator::new(q0, Magnus4, Normalize) else {
+    let Ok(mut p) = Propagator::new(q0, Magnus4, GaussPoints::new(), Normalize) else {
         return vec![Quat::IDENTITY; at.len()];
     };
     let mut out = Vec::new();
@@ -215,11 +215,7 @@ fn stream_reference(q0: Quat<f64>, s: &Stream, at: &[usize], sub: usize) -> Vec<
             let tau = (s.times[k + 1] - t0) / sub as f64;
             for j in 0..sub {
                 let a = t0 + j as f64 * tau;
-                let _ = p.step_gauss(
-                    stream_rate(s, k, a + GAUSS_1 * tau),
-                    stream_rate(s, k, a + GAUSS_2 * tau),
-                    tau,
-                );
+                let _ = gauss_step(&mut p, |c| stream_rate(s, k, a + c * tau), tau);
             }
             k += 1;
         }
@@ -230,11 +226,11 @@ fn stream_reference(q0: Quat<f64>, s: &Stream, at: &[usize], sub: usize) -> Vec<
 
 fn configs() -> Vec<Config> {
     let mut v = vec![
-        Config::qp(Method::Euler, Stab::FirstOrder, Input::Hold),
-        Config::qp(Method::Rk4, Stab::FirstOrder, Input::Linear),
-        Config::qp(Method::ExpMap, Stab::FirstOrder, Input::Linear),
-        Config::qp(Method::ExpMap, Stab::FirstOrder, Input::History),
-        Config::qp(Method::Magnus4, Stab::FirstOrder, Input::History),
+        Config::qp(SchemeKind::Euler, Stab::FirstOrder, Input::Hold),
+        Config::qp(SchemeKind::Rk4, Stab::FirstOrder, Input::Linear),
+        Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Linear),
+        Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History),
+        Config::qp(SchemeKind::Magnus4, Stab::FirstOrder, Input::History),
     ];
     v.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
     v
@@ -321,7 +317,10 @@ pub fn sensor_study(
          integral takes the cubic through the four samples around each interval at their true times (fourth order: \
          for ideal samples it is the motion to the first row's second number's precision or better; f64 Magnus-4, \
          16 substeps per interval; 8 substeps agree to {ref_check:.1e} rad). Dropped samples arrive as a longer dt (nothing is \
-         skipped by the integrator); jitter perturbs each interval by up to ±10% with known timestamps. `ahrs` has no \
+         skipped by the integrator); jitter perturbs each interval by up to ±10% with known timestamps. The sample \
+         history assumes equally spaced samples: it restarts whenever dt changes and bridges that interval with a \
+         linear step over its true length, so after a drop it builds up its order again and under jitter every \
+         history step is a linear one. `ahrs` has no \
          time argument (a fixed `sample_period`), so gaps and jitter are invisible to it. Noise and bias models are \
          MPU-6000 class; the 2000 °/s roll exceeds a ±1000 °/s range on the roll axis, so those readings clip.\n\n{head}\n{sep}\n{}\n{stream_row}\n{facts}\n\n\
          Reading: the first number is what the integrator adds to the sensor's own error; the second is what the \

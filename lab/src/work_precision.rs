@@ -6,11 +6,11 @@
 //! (`firmware/bench-m4f.csv`, written by `python3 firmware/figures.py`). The f32 arithmetic is bit-identical
 //! on the M4F and the host (tests/firmware_snapshot.rs), so the host's error is the target's error.
 
-use crate::configs::{Config, Input, LabReal, Peer, Sample, Stab};
+use crate::configs::{scheme_name, Config, Input, LabReal, Peer, Sample, Stab};
 use crate::plot::{plot, Axis, Series};
 use crate::scenes::Scene;
 use crate::Ctx;
-use quatprop::scheme::{Method, Scheme as _};
+use quatprop::scheme::SchemeKind;
 use quatprop::{Error, Quat, Vec3};
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -139,16 +139,16 @@ pub fn sweep<T: LabReal>(
 /// The comparison set of a scene: every scheme with linear input, the fourth-order sample-history and mid
 /// inputs, all with FirstOrder, and every peer.
 pub fn scheme_set() -> Vec<Config> {
-    let mut v: Vec<Config> = Method::ALL
+    let mut v: Vec<Config> = SchemeKind::ALL
         .iter()
         .map(|&m| Config::qp(m, Stab::FirstOrder, Input::Linear))
         .collect();
-    for m in [Method::Rk4, Method::ExpMap, Method::Magnus4] {
+    for m in [SchemeKind::Rk4, SchemeKind::ExpMap, SchemeKind::Magnus4] {
         v.push(Config::qp(m, Stab::FirstOrder, Input::History));
     }
-    v.push(Config::qp(Method::ExpMap, Stab::FirstOrder, Input::Mid));
+    v.push(Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Mid));
     v.push(Config::Quatprop {
-        method: Method::ExpMap,
+        method: SchemeKind::ExpMap,
         stab: Stab::FirstOrder,
         input: Input::History,
         compensated: true,
@@ -157,13 +157,17 @@ pub fn scheme_set() -> Vec<Config> {
     v
 }
 
-/// Every scheme × stabilizer × input model (plain accumulator).
+/// Every scheme × stabilizer × input model (plain accumulator) that exists: Baumgarte with the Runge–Kutta
+/// schemes only.
 pub fn full_grid() -> Vec<Config> {
     let mut v = Vec::new();
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         for s in Stab::ALL {
             for i in Input::ALL {
-                v.push(Config::qp(m, s, i));
+                let c = Config::qp(m, s, i);
+                if c.exists() {
+                    v.push(c);
+                }
             }
         }
     }
@@ -300,7 +304,7 @@ pub fn sweep_in(
 pub struct Options {
     pub scenes: Vec<String>,
     pub precisions: Vec<Precision>,
-    pub methods: Vec<Method>,
+    pub methods: Vec<SchemeKind>,
     pub stabs: Vec<Stab>,
     pub inputs: Vec<Input>,
     pub rates: Vec<u32>,
@@ -457,11 +461,14 @@ pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> Str
 pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let mut configs = Vec::new();
     for (m, i) in [
-        (Method::Rk4, Input::Linear),
-        (Method::ExpMap, Input::History),
+        (SchemeKind::Rk4, Input::Linear),
+        (SchemeKind::ExpMap, Input::History),
     ] {
         for s in Stab::ALL {
-            configs.push(Config::qp(m, s, i));
+            let c = Config::qp(m, s, i);
+            if c.exists() {
+                configs.push(c);
+            }
         }
     }
     let (rates, horizon) = opt.rates_horizon(scene);
@@ -502,8 +509,9 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     ctx.csv("work_precision_stabilizers.csv", &csv);
     format!(
         "### Work–precision per stabilizer: {}\n\nRk4 with linear input and the exponential map with the sample \
-         history, each with every stabilizer (Every(16); Baumgarte k = 0.5 /s). CSV: \
-         `work_precision_stabilizers.csv`.\n\n{table}\n{figures}",
+         history, each with every stabilizer (Every(16); Baumgarte k = 0.5 /s, for Rk4 only: since quatprop 0.2 \
+         Baumgarte is a right-hand-side option of the Runge–Kutta schemes, so the exponential map has no Baumgarte \
+         row). CSV: `work_precision_stabilizers.csv`.\n\n{table}\n{figures}",
         scene.name()
     )
 }
@@ -553,7 +561,7 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
     let Some(bench) = m4f_bench() else {
         return format!(
             "### Full grid and Cortex-M4F cost\n\n{counts} points (every scheme × stabilizer × input × rate × \
-             precision) in `work_precision_grid.csv`. No `firmware/bench-m4f.csv`: run `python3 firmware/figures.py` \
+             precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. No `firmware/bench-m4f.csv`: run `python3 firmware/figures.py` \
              for the instruction-count overlay.\n"
         );
     };
@@ -574,14 +582,16 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
         };
         bench
             .iter()
-            .find(|b| b.0 == "f32" && b.1 == method.name() && b.2 == sname && b.3 == input.name())
+            .find(|b| {
+                b.0 == "f32" && b.1 == scheme_name(method) && b.2 == sname && b.3 == input.name()
+            })
             .map(|b| b.4)
     };
     // Instructions per simulated second = per step × steps per second.
     let cost = |p: &Point| instr(&p.config).map(|i| i * p.hz as f64 * p.config.steps_per_sample());
     let mut series = Vec::new();
     let mut shown = Vec::new();
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         for i in Input::ALL {
             let c = Config::qp(m, Stab::FirstOrder, i);
             let pts: Vec<(f64, f64)> = f32_points
@@ -592,7 +602,11 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
             if !pts.is_empty()
                 && matches!(
                     m,
-                    Method::Euler | Method::Rk2 | Method::Rk4 | Method::ExpMap | Method::Magnus4
+                    SchemeKind::Euler
+                        | SchemeKind::Rk2
+                        | SchemeKind::Rk4
+                        | SchemeKind::ExpMap
+                        | SchemeKind::Magnus4
                 )
             {
                 series.push(Series::both(c.label(), pts));
@@ -641,7 +655,7 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
     }
     format!(
         "### Full grid and Cortex-M4F cost: {}\n\n{counts} points (every scheme × stabilizer × input model × rate × \
-         precision) in `work_precision_grid.csv`. The plot puts the f32 errors (bit-identical on the M4F) against \
+         precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. The plot puts the f32 errors (bit-identical on the M4F) against \
          the instructions the firmware bench counted on the Cortex-M4F (`firmware/bench-m4f.csv`, from \
          `python3 firmware/figures.py`) times the steps per second; the bench measures the hold, linear and mid \
          inputs (the sample history costs about what mid does: both evaluate a polynomial rate model). Shown: \
@@ -654,17 +668,17 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
 /// The headline: coning in f32, quatprop's best against every peer at equal host time.
 pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let mut configs = vec![
-        Config::qp(Method::ExpMap, Stab::FirstOrder, Input::Linear),
-        Config::qp(Method::Rk4, Stab::FirstOrder, Input::Linear),
-        Config::qp(Method::ExpMap, Stab::FirstOrder, Input::History),
+        Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Linear),
+        Config::qp(SchemeKind::Rk4, Stab::FirstOrder, Input::Linear),
+        Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History),
         Config::Quatprop {
-            method: Method::ExpMap,
+            method: SchemeKind::ExpMap,
             stab: Stab::FirstOrder,
             input: Input::History,
             compensated: true,
         },
-        Config::qp(Method::Rk4, Stab::FirstOrder, Input::History),
-        Config::qp(Method::Magnus4, Stab::FirstOrder, Input::History),
+        Config::qp(SchemeKind::Rk4, Stab::FirstOrder, Input::History),
+        Config::qp(SchemeKind::Magnus4, Stab::FirstOrder, Input::History),
     ];
     configs.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
     let (rates, horizon) = opt.rates_horizon(scene);
