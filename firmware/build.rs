@@ -1,32 +1,26 @@
-//! Chooses the memory map from the target triple (one QEMU board family per triple) and adds the
-//! linker scripts: `link.x` for every binary, `defmt.x` for those that log with defmt.
+//! Picks the board's memory map from the target triple (one QEMU board family per triple, files in
+//! `memory/`) and adds the linker scripts: `link.x` for every program, `defmt.x` when defmt logging is on.
 use std::{env, fs, path::PathBuf};
 
 fn main() {
     let target = env::var("TARGET").unwrap_or_default();
-    let memory = match target.as_str() {
-        // mps2-an505 (Cortex-M33): secure alias; code at 0x0 locks up.
-        "thumbv8m.main-none-eabihf" => {
-            "MEMORY\n{\n  FLASH : ORIGIN = 0x10000000, LENGTH = 4M\n  RAM : ORIGIN = 0x38000000, LENGTH = 4M\n}\n"
-                .to_string()
-        }
-        // micro:bit (Cortex-M0, nRF51).
-        "thumbv6m-none-eabi" => {
-            "MEMORY\n{\n  FLASH : ORIGIN = 0x00000000, LENGTH = 256K\n  RAM : ORIGIN = 0x20000000, LENGTH = 16K\n}\n"
-                .to_string()
-        }
-        // mps2-an386 / an500 / an385: the top-level memory.x.
-        _ => fs::read_to_string("../memory.x").expect("top-level memory.x"),
+    let map = match target.as_str() {
+        "thumbv8m.main-none-eabihf" => "memory/mps2-an505.x",
+        "thumbv6m-none-eabi" => "memory/microbit.x",
+        // mps2-an386 / an500 (thumbv7em-none-eabihf) and mps2-an385 (thumbv7m-none-eabi).
+        _ => "memory/mps2.x",
     };
-    let out = PathBuf::from(env::var("OUT_DIR").unwrap());
-    fs::write(out.join("memory.x"), memory).unwrap();
-    println!("cargo:rustc-link-search={}", out.display());
-    println!("cargo:rerun-if-changed=../memory.x");
     println!("cargo:rerun-if-changed=build.rs");
-    if target.starts_with("thumb") {
-        println!("cargo:rustc-link-arg-bins=-Tlink.x");
-        for bin in ["smoke", "isr", "bench", "stack"] {
-            println!("cargo:rustc-link-arg-bin={bin}=-Tdefmt.x");
-        }
+    println!("cargo:rerun-if-changed={map}");
+    if !target.starts_with("thumb") {
+        return;
+    }
+    // cortex-m-rt's link.x includes `memory.x`: put the board's map under that name in OUT_DIR.
+    let out = PathBuf::from(env::var("OUT_DIR").unwrap());
+    fs::copy(map, out.join("memory.x")).expect("memory map");
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rustc-link-arg-bins=-Tlink.x");
+    if env::var_os("CARGO_FEATURE_LOG").is_some() {
+        println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
     }
 }

@@ -1,55 +1,131 @@
-//! The smoke scenes, shared verbatim by the firmware (`src/bin/smoke.rs`) and the host snapshot test
-//! (`tests/firmware_snapshot.rs` includes this file), so both run the same f32 arithmetic.
+//! The smoke scenes and the quick start's sample stream, shared verbatim by the firmware (`src/bin/smoke.rs`,
+//! `src/bin/isr.rs`, `src/bin/quickstart.rs`) and the host snapshot test (`tests/firmware_snapshot.rs`
+//! includes this file), so both run the same f32 arithmetic.
 //!
 //! Everything here is plain f32 arithmetic plus quatprop; the coning rates come from a rotation recurrence,
-//! not from `sin`/`cos`, so no math library takes part in generating the inputs.
+//! not from `sin`/`cos`, so no math library takes part in generating the inputs. Samples reach the propagator
+//! through the input models, one `push` per sensor sample.
 
-use quatprop::scheme::Method;
-use quatprop::stabilize::Policy;
-use quatprop::{Propagator, Quat, Vec3};
+use quatprop::input::{History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::scheme::{Baumgarte, Euler, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind};
+use quatprop::stabilize::{Off, Stabilizer, StabilizerKind};
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
 
-/// Steps per run.
+/// Steps per run on the boards with a hardware FPU (and on the host).
 pub const STEPS: u32 = 100_000;
-/// Step (s): a 1 kHz gyro.
+/// Steps per run on the soft-float boards (Cortex-M3 and M0), which emulate every float operation in
+/// software: the same runs, shorter, to keep CI's time (`firmware/expected/smoke-soft.txt`).
+pub const STEPS_SOFT: u32 = 50_000;
+/// Steps of the interrupt-driven run (`src/bin/isr.rs`).
+pub const ISR_STEPS: u32 = 2_000;
+/// Sample period (s): a 1 kHz gyro (TwiceRate: two samples of `DT / 2` per step).
 pub const DT: f32 = 1.0e-3;
+/// Baumgarte's gain k (1/s) in the smoke runs.
+pub const BAUMGARTE_K: f32 = 0.5;
 
-/// The scenes of the smoke run.
+/// The scenes of the smoke run: the same body motion fed through different input models.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scene {
-    /// Constant rate ω = (0.36, −0.48, 0.80)·2 rad/s, `step_hold`.
+    /// Constant rate ω = (0.36, −0.48, 0.80)·2 rad/s, one `Hold` sample per step.
     Constant,
-    /// Coning α = 0.3 rad at 5 Hz, samples at both step ends, `step_linear`.
+    /// Coning α = 0.3 rad at 5 Hz, `Linear`: the rate linear between consecutive 1 kHz samples.
     ConingLinear,
-    /// The same coning with a sample in the middle of each step (gyro at 2 kHz), `step_mid`.
-    ConingMid,
+    /// The same coning with the gyro at 2 kHz, `TwiceRate`: start, middle, end of every step.
+    ConingTwiceRate,
+    /// The same coning at 1 kHz through `History` (cubic through the last four samples).
+    ConingHistory,
 }
 
 impl Scene {
     /// All scenes.
-    pub const ALL: [Scene; 3] = [Scene::Constant, Scene::ConingLinear, Scene::ConingMid];
+    pub const ALL: [Scene; 4] = [
+        Scene::Constant,
+        Scene::ConingLinear,
+        Scene::ConingTwiceRate,
+        Scene::ConingHistory,
+    ];
 
     /// Short label.
     pub fn name(self) -> &'static str {
         match self {
             Scene::Constant => "constant",
             Scene::ConingLinear => "coning-linear",
-            Scene::ConingMid => "coning-mid",
+            Scene::ConingTwiceRate => "coning-twice-rate",
+            Scene::ConingHistory => "coning-history",
+        }
+    }
+
+    /// Pushes that make `steps` steps (the first sample of Linear/TwiceRate/History only starts the model).
+    pub fn pushes(self, steps: u32) -> u32 {
+        match self {
+            Scene::Constant => steps,
+            Scene::ConingLinear | Scene::ConingHistory => steps + 1,
+            Scene::ConingTwiceRate => 2 * steps + 1,
         }
     }
 }
 
-/// The stabilizers of the smoke run.
-pub const POLICIES: [Policy<f32>; 5] = [
-    Policy::Off,
-    Policy::Normalize,
-    Policy::FirstOrder,
-    Policy::Every(16),
-    Policy::Baumgarte { k: 0.5 },
+/// The post-step stabilizers of the smoke run (every scheme runs with each).
+pub const STABILIZERS: [StabilizerKind; 4] = [
+    StabilizerKind::Off,
+    StabilizerKind::Normalize,
+    StabilizerKind::FirstOrder,
+    StabilizerKind::Every(16),
 ];
 
-/// Label of a policy.
-pub fn policy_name(p: Policy<f32>) -> &'static str {
-    p.name()
+/// The Runge–Kutta schemes that also run with Baumgarte's right-hand side (k = [`BAUMGARTE_K`], stabilizer Off).
+pub const BAUMGARTE_SCHEMES: [SchemeKind; 5] = [
+    SchemeKind::Euler,
+    SchemeKind::Rk2,
+    SchemeKind::Rk3,
+    SchemeKind::Rk4,
+    SchemeKind::Rk5,
+];
+
+/// One smoke configuration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Config {
+    /// A scheme with a post-step stabilizer (both chosen at run time).
+    Post(SchemeKind, StabilizerKind),
+    /// A Runge–Kutta scheme with Baumgarte's term (k = [`BAUMGARTE_K`]), stabilizer Off.
+    Baumgarte(SchemeKind),
+}
+
+impl Config {
+    /// Every configuration of the smoke run, in output order: each scheme × each post-step stabilizer, then
+    /// Baumgarte on each Runge–Kutta scheme.
+    pub fn all() -> impl Iterator<Item = Config> {
+        SchemeKind::ALL
+            .into_iter()
+            .flat_map(|s| STABILIZERS.into_iter().map(move |z| Config::Post(s, z)))
+            .chain(BAUMGARTE_SCHEMES.into_iter().map(Config::Baumgarte))
+    }
+
+    /// Number of configurations.
+    pub const COUNT: usize = SchemeKind::ALL.len() * STABILIZERS.len() + BAUMGARTE_SCHEMES.len();
+
+    /// The scheme's label (`Rk4`, or `Rk4+Baumgarte` for the stabilized right-hand side).
+    pub fn scheme_name(self) -> &'static str {
+        match self {
+            Config::Post(s, _) => Scheme::<f32>::information(&s).name,
+            Config::Baumgarte(s) => match s {
+                SchemeKind::Euler => "Euler+Baumgarte",
+                SchemeKind::Rk2 => "Rk2+Baumgarte",
+                SchemeKind::Rk3 => "Rk3+Baumgarte",
+                SchemeKind::Rk4 => "Rk4+Baumgarte",
+                SchemeKind::Rk5 => "Rk5+Baumgarte",
+                _ => "?+Baumgarte",
+            },
+        }
+    }
+
+    /// The post-step stabilizer's label.
+    pub fn stabilizer_name(self) -> &'static str {
+        match self {
+            Config::Post(_, z) => z.name(),
+            Config::Baumgarte(_) => "Off",
+        }
+    }
 }
 
 /// Coning body rate ω(t) = (−Ω sin α sin Ωt, Ω sin α cos Ωt, −2Ω sin²(α/2)), α = 0.3, Ω = 2π·5 rad/s,
@@ -89,11 +165,56 @@ impl ConingRates {
         self.c = c;
         self.s = s;
     }
+
+    /// Advances by a whole step (two half steps, as every scene does).
+    pub fn advance(&mut self) {
+        self.advance_half();
+        self.advance_half();
+    }
 }
 
 impl Default for ConingRates {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// The sensor samples of a scene, each with the time since the previous one.
+pub struct Feed {
+    scene: Scene,
+    cone: ConingRates,
+    started: bool,
+}
+
+impl Feed {
+    /// The samples of `scene` from t = 0.
+    pub fn new(scene: Scene) -> Self {
+        Self {
+            scene,
+            cone: ConingRates::new(),
+            started: false,
+        }
+    }
+
+    /// The next sample and its `dt` (s).
+    pub fn next_sample(&mut self) -> (GyroSample<f32>, f32) {
+        let first = !self.started;
+        self.started = true;
+        match self.scene {
+            Scene::Constant => (GyroSample::new(Vec3::new(0.72_f32, -0.96, 1.6)), DT),
+            Scene::ConingLinear | Scene::ConingHistory => {
+                if !first {
+                    self.cone.advance();
+                }
+                (GyroSample::new(self.cone.rate()), DT)
+            }
+            Scene::ConingTwiceRate => {
+                if !first {
+                    self.cone.advance_half();
+                }
+                (GyroSample::new(self.cone.rate()), 0.5 * DT)
+            }
+        }
     }
 }
 
@@ -104,46 +225,35 @@ pub struct Outcome {
     pub q: Quat<f32>,
     /// Steps taken.
     pub steps: u64,
-    /// Corrections applied by the stabilizer.
+    /// Corrections applied by the post-step stabilizer.
     pub corrections: u64,
-    /// Steps refused (expected zero in these scenes).
+    /// Samples refused (expected zero in these scenes).
     pub refused: u32,
 }
 
-/// Runs one scene with one scheme and stabilizer for `steps` steps from the identity.
-pub fn run(scene: Scene, method: Method, policy: Policy<f32>, steps: u32) -> Outcome {
-    let mut p = match Propagator::new(Quat::IDENTITY, method, policy) {
-        Ok(p) => p,
-        Err(_) => {
-            return Outcome {
-                q: Quat::ZERO,
-                steps: 0,
-                corrections: 0,
-                refused: steps,
-            }
+impl Outcome {
+    fn failed(refused: u32) -> Self {
+        Self {
+            q: Quat::ZERO,
+            steps: 0,
+            corrections: 0,
+            refused,
         }
-    };
+    }
+}
+
+/// Pushes the scene's samples into `p`.
+fn drive<S, I, Z>(mut p: Propagator<f32, S, I, Z>, scene: Scene, steps: u32) -> Outcome
+where
+    S: Scheme<f32>,
+    I: InputModel<f32, Sample = GyroSample<f32>>,
+    Z: Stabilizer,
+{
+    let mut feed = Feed::new(scene);
     let mut refused = 0;
-    let constant = Vec3::new(0.72_f32, -0.96, 1.6);
-    let mut cone = ConingRates::new();
-    for _ in 0..steps {
-        let r = match scene {
-            Scene::Constant => p.step_hold(constant, DT),
-            Scene::ConingLinear => {
-                let w0 = cone.rate();
-                cone.advance_half();
-                cone.advance_half();
-                p.step_linear(w0, cone.rate(), DT)
-            }
-            Scene::ConingMid => {
-                let w0 = cone.rate();
-                cone.advance_half();
-                let wm = cone.rate();
-                cone.advance_half();
-                p.step_mid(w0, wm, cone.rate(), DT)
-            }
-        };
-        if r.is_err() {
+    for _ in 0..scene.pushes(steps) {
+        let (sample, dt) = feed.next_sample();
+        if p.push(sample, dt).is_err() {
             refused += 1;
         }
     }
@@ -153,6 +263,75 @@ pub fn run(scene: Scene, method: Method, policy: Policy<f32>, steps: u32) -> Out
         corrections: p.corrections(),
         refused,
     }
+}
+
+/// Runs `scheme` + `stabilizer` on `scene` with the scene's input model for `steps` steps from the identity.
+pub fn run_with<S: Scheme<f32>, Z: Stabilizer>(
+    scene: Scene,
+    scheme: S,
+    stabilizer: Z,
+    steps: u32,
+) -> Outcome {
+    let q0 = Quat::IDENTITY;
+    let built =
+        match scene {
+            Scene::Constant => {
+                Propagator::new(q0, scheme, Hold, stabilizer).map(|p| drive(p, scene, steps))
+            }
+            Scene::ConingLinear => Propagator::new(q0, scheme, Linear::new(), stabilizer)
+                .map(|p| drive(p, scene, steps)),
+            Scene::ConingTwiceRate => Propagator::new(q0, scheme, TwiceRate::new(), stabilizer)
+                .map(|p| drive(p, scene, steps)),
+            Scene::ConingHistory => Propagator::new(q0, scheme, History::new(), stabilizer)
+                .map(|p| drive(p, scene, steps)),
+        };
+    built.unwrap_or(Outcome::failed(scene.pushes(steps)))
+}
+
+/// Runs one smoke configuration on one scene for `steps` steps from the identity.
+pub fn run(scene: Scene, config: Config, steps: u32) -> Outcome {
+    fn baumgarte<S: Scheme<f32> + quatprop::scheme::RungeKutta>(
+        scene: Scene,
+        s: S,
+        steps: u32,
+    ) -> Outcome {
+        match Baumgarte::new(s, BAUMGARTE_K) {
+            Ok(b) => run_with(scene, b, Off, steps),
+            Err(_) => Outcome::failed(scene.pushes(steps)),
+        }
+    }
+    match config {
+        Config::Post(s, z) => run_with(scene, s, z, steps),
+        Config::Baumgarte(s) => match s {
+            SchemeKind::Euler => baumgarte(scene, Euler, steps),
+            SchemeKind::Rk2 => baumgarte(scene, Rk2, steps),
+            SchemeKind::Rk3 => baumgarte(scene, Rk3, steps),
+            SchemeKind::Rk4 => baumgarte(scene, Rk4, steps),
+            SchemeKind::Rk5 => baumgarte(scene, Rk5, steps),
+            _ => Outcome::failed(scene.pushes(steps)),
+        },
+    }
+}
+
+/// Samples in the quick start's stream.
+pub const QUICKSTART_SAMPLES: u32 = 10_000;
+/// Index of the one NaN sample (the refused-sample path).
+pub const QUICKSTART_NAN_AT: u32 = QUICKSTART_SAMPLES / 2;
+
+/// The quick start's input: [`QUICKSTART_SAMPLES`] coning samples at 1 kHz (the rotation recurrence above),
+/// sample [`QUICKSTART_NAN_AT`] with a NaN x rate.
+pub fn quickstart_samples() -> impl Iterator<Item = GyroSample<f32>> {
+    let mut cone = ConingRates::new();
+    (0..QUICKSTART_SAMPLES).map(move |i| {
+        if i > 0 {
+            cone.advance();
+        }
+        let mut rate = cone.rate();
+        if i == QUICKSTART_NAN_AT {
+            rate.x = f32::NAN;
+        }
+        GyroSample::new(rate)
+    })
 }
 
 /// Canonical bit pattern of an f32 (one NaN pattern for every NaN: ARM and x86 default NaNs differ).

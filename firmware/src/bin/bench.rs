@@ -1,227 +1,176 @@
-//! Instructions per step for every scheme × stabilizer × input model in f32 (and Rk4 in f64, to show the
-//! soft-float cost on a single-precision FPU), counted with SysTick under QEMU `-icount shift=10`.
+//! Instructions per step on the Cortex-M4F, counted with SysTick under QEMU `-icount shift=10`, for every
+//! input model (Hold, Linear, History, TwiceRate, GaussPoints, DeltaAngles with TwoSample) × scheme (ExpMap,
+//! Magnus4, Cf4, Rk4) × stabilizer (FirstOrder, Normalize) × accumulator (Plain, Kahan) in f32, and the
+//! README quick start's `attitude_from` per sample.
 //!
-//! Each figure is (instructions of a loop of N steps − instructions of the same loop without the step) / N,
-//! with inputs passed through `black_box` so nothing is constant-folded. The zero-sized scheme and stabilizer
-//! types are measured, exactly as a firmware that names them gets them; the count includes the propagator's
-//! input validation and the commit. Step angles are small (|ω| ≈ 1.2 rad/s at 1 kHz), so the exponential
-//! map takes its Taylor branch, as it does in normal flight.
+//! Each figure is (instructions of a loop of pushes − instructions of the same loop without the push) per
+//! step of 1 ms: 64 steps, i.e. 64 pushes for one-sample-per-step models and 128 for TwiceRate, GaussPoints
+//! and DeltaAngles(TwoSample), after the model's warm-up (History is full). Samples come from an opaque array
+//! (`black_box`), so nothing is constant-folded; the zero-sized scheme and stabilizer types are measured as a
+//! firmware that names them gets them; the count includes the input checks, the input model, the step and
+//! the commit. Step angles are small (|ω| ≈ 1.2 rad/s at 1 kHz): the exponential maps take their Taylor
+//! branch, as in normal flight.
 #![no_std]
 #![no_main]
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
-use defmt_semihosting as _;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
-use quatprop::scheme::{Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme};
-use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Stabilizer};
-use quatprop::{Propagator, Quat, Real, Vec3};
+use quatprop::input::coning::TwoSample;
+use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
+use quatprop::scheme::{Cf4, ExpMap, Magnus4, Rk4, Scheme};
+use quatprop::stabilize::{FirstOrder, Normalize, Stabilizer};
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
+use quatprop_firmware::configs::Input;
+use quatprop_firmware::exit::{exit, fail};
 use quatprop_firmware::icount::Counter;
+use quatprop_firmware::quickstart::attitude_from;
 
-const HOLD: u8 = 0;
-const LINEAR: u8 = 1;
-const MID: u8 = 2;
+/// Steps per measured loop.
+const STEPS: u32 = 64;
+/// Step (s).
+const H: f32 = 1.0e-3;
 
-fn rates<T: Real>() -> [Vec3<T>; 8] {
+fn rates() -> [Vec3<f32>; 8] {
     let mut r = [Vec3::ZERO; 8];
     for (i, w) in r.iter_mut().enumerate() {
-        let a = i as f64 * 0.7;
-        *w = Vec3::new(
-            T::from_f64(0.3 + 0.1 * a),
-            T::from_f64(-0.2 + 0.05 * a),
-            T::from_f64(1.0 - 0.03 * a),
-        );
+        let a = i as f32 * 0.7;
+        *w = Vec3::new(0.3 + 0.1 * a, -0.2 + 0.05 * a, 1.0 - 0.03 * a);
     }
     r
 }
 
 #[inline(never)]
-fn baseline<T: Real, const INPUT: u8>(c: &Counter, w: &[Vec3<T>; 8], n: usize) -> u32 {
+fn baseline<I: Input>(c: &Counter, s: &[I::Sample; 8], dt: f32, n: u32) -> u32 {
     let t0 = c.now();
-    for i in 0..n {
-        match INPUT {
-            HOLD => {
-                black_box(w[i & 7]);
-            }
-            LINEAR => {
-                black_box((w[i & 7], w[(i + 1) & 7]));
-            }
-            _ => {
-                black_box((w[i & 7], w[(i + 3) & 7], w[(i + 1) & 7]));
-            }
-        }
-        black_box(());
+    for i in 0..n as usize {
+        black_box((s[i & 7], dt));
     }
     Counter::instructions(Counter::ticks(t0, c.now()))
 }
 
 #[inline(never)]
-fn steps<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>, const INPUT: u8>(
+fn pushes<S: Scheme<f32>, I: Input, Z: Stabilizer, A: Accumulator<f32>>(
     c: &Counter,
-    p: &mut Propagator<T, S, Z, A>,
-    w: &[Vec3<T>; 8],
-    dt: T,
-    n: usize,
+    p: &mut Propagator<f32, S, I, Z, A>,
+    s: &[I::Sample; 8],
+    dt: f32,
+    n: u32,
 ) -> u32 {
     let t0 = c.now();
-    for i in 0..n {
-        let r = match INPUT {
-            HOLD => p.step_hold(w[i & 7], dt),
-            LINEAR => p.step_linear(w[i & 7], w[(i + 1) & 7], dt),
-            _ => p.step_mid(w[i & 7], w[(i + 3) & 7], w[(i + 1) & 7], dt),
-        };
-        let _ = black_box(r);
+    for i in 0..n as usize {
+        let _ = black_box(p.push(s[i & 7], dt));
     }
     Counter::instructions(Counter::ticks(t0, c.now()))
 }
 
-/// Instructions per step ×100 (two decimals), or u32::MAX if a step was refused.
-fn measure<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
+/// Instructions per step ×100, or u32::MAX if a sample was refused.
+fn measure<S: Scheme<f32>, I: Input, Z: Stabilizer, A: Accumulator<f32>>(
     c: &Counter,
-    s: S,
-    z: Z,
-    n: usize,
+    scheme: S,
+    input: I,
+    stabilizer: Z,
+    accumulator: A,
 ) -> u32 {
-    let Ok(p) = Propagator::new(Quat::<T>::IDENTITY, s, z) else {
+    let Ok(p) = Propagator::new(Quat::IDENTITY, scheme, input, stabilizer) else {
         return u32::MAX;
     };
-    measure_propagator::<T, S, Z, Plain, INPUT>(c, p, n)
+    let mut p = p.with_accumulator(accumulator);
+    let dt = black_box(H / input.per_step() as f32);
+    let w = rates();
+    let s = black_box(w.map(|w| input.sample(w, dt)));
+    // Warm-up: the samples that only start the model, then one full step.
+    pushes(c, &mut p, &s, dt, input.warm_up() + input.per_step());
+    let before = p.steps();
+    let n = STEPS * input.per_step();
+    let total = pushes(c, &mut p, &s, dt, n);
+    let base = baseline::<I>(c, &s, dt, n);
+    if p.steps() - before != u64::from(STEPS) {
+        return u32::MAX;
+    }
+    ((u64::from(total.saturating_sub(base)) * 100) / u64::from(STEPS)) as u32
 }
 
-/// The same with the Kahan-compensated accumulator.
-fn measure_kahan<T: Real, S: Scheme, Z: Stabilizer<T>, const INPUT: u8>(
+fn report(ok: &mut bool, what: [&str; 4], v: u32) {
+    *ok &= v != u32::MAX;
+    defmt::println!(
+        "bench {=str} {=str} {=str} {=str} {=u32}.{=u32:02}",
+        what[0],
+        what[1],
+        what[2],
+        what[3],
+        v / 100,
+        v % 100
+    );
+}
+
+fn accumulators<S: Scheme<f32>, I: Input, Z: Stabilizer>(
     c: &Counter,
+    ok: &mut bool,
     s: S,
+    i: I,
     z: Z,
-    n: usize,
-) -> u32 {
-    let Ok(p) = Propagator::new_compensated(Quat::<T>::IDENTITY, s, z) else {
-        return u32::MAX;
-    };
-    measure_propagator::<T, S, Z, Kahan<T>, INPUT>(c, p, n)
+    names: [&str; 2],
+) {
+    let what = |a| [i.name(), names[0], names[1], a];
+    report(ok, what("Plain"), measure(c, s, i, z, Plain));
+    report(ok, what("Kahan"), measure(c, s, i, z, Kahan::new()));
 }
 
-fn measure_propagator<T: Real, S: Scheme, Z: Stabilizer<T>, A: Accumulator<T>, const INPUT: u8>(
-    c: &Counter,
-    mut p: Propagator<T, S, Z, A>,
-    n: usize,
-) -> u32 {
-    let w = black_box(rates::<T>());
-    let dt = black_box(T::from_f64(1e-3));
-    // Warm-up (nothing is cached on this core, but keep the first call out of the figure anyway).
-    steps::<T, S, Z, A, INPUT>(c, &mut p, &w, dt, 1);
-    let total = steps::<T, S, Z, A, INPUT>(c, &mut p, &w, dt, n);
-    let base = baseline::<T, INPUT>(c, &w, n);
-    if p.steps() != n as u64 + 1 {
-        return u32::MAX;
-    }
-    ((total.saturating_sub(base) as u64 * 100) / n as u64) as u32
+fn stabilizers<S: Scheme<f32>, I: Input>(c: &Counter, ok: &mut bool, s: S, i: I, name: &str) {
+    accumulators(c, ok, s, i, FirstOrder, [name, "FirstOrder"]);
+    accumulators(c, ok, s, i, Normalize, [name, "Normalize"]);
 }
 
-fn input_name(i: u8) -> &'static str {
-    match i {
-        HOLD => "hold",
-        LINEAR => "linear",
-        _ => "mid",
-    }
+fn schemes<I: Input>(c: &Counter, ok: &mut bool, i: I) {
+    stabilizers(c, ok, ExpMap, i, "ExpMap");
+    stabilizers(c, ok, Magnus4, i, "Magnus4");
+    stabilizers(c, ok, Cf4, i, "Cf4");
+    stabilizers(c, ok, Rk4, i, "Rk4");
 }
 
-macro_rules! row {
-    ($c:expr, $ok:ident, $t:ty, $tname:expr, $n:expr, $s:expr, $z:expr, $zname:expr) => {{
-        for input in [HOLD, LINEAR, MID] {
-            let v = match input {
-                HOLD => measure::<$t, _, _, HOLD>($c, $s, $z, $n),
-                LINEAR => measure::<$t, _, _, LINEAR>($c, $s, $z, $n),
-                _ => measure::<$t, _, _, MID>($c, $s, $z, $n),
-            };
-            $ok &= v != u32::MAX;
-            defmt::println!(
-                "bench {=str} {=str} {=str} {=str} {=u32}.{=u32:02}",
-                $tname,
-                $s.name(),
-                $zname,
-                input_name(input),
-                v / 100,
-                v % 100
-            );
-        }
-    }};
-}
+/// Samples in the quick-start measurement.
+const QS_SAMPLES: usize = 256;
 
-macro_rules! scheme_rows {
-    ($c:expr, $ok:ident, $s:expr) => {{
-        row!($c, $ok, f32, "f32", 64, $s, Off, "Off");
-        row!($c, $ok, f32, "f32", 64, $s, Normalize, "Normalize");
-        row!($c, $ok, f32, "f32", 64, $s, FirstOrder, "FirstOrder");
-        row!($c, $ok, f32, "f32", 64, $s, Every(16), "Every(16)");
-        row!(
-            $c,
-            $ok,
-            f32,
-            "f32",
-            64,
-            $s,
-            Baumgarte { k: 0.5_f32 },
-            "Baumgarte"
-        );
-    }};
+#[inline(never)]
+fn quickstart(c: &Counter, samples: &[GyroSample<f32>]) -> (u32, bool) {
+    let t0 = c.now();
+    let r = black_box(attitude_from(black_box(samples).iter().copied()));
+    let n = Counter::instructions(Counter::ticks(t0, c.now()));
+    (n, matches!(r, Ok((_, 0))))
 }
 
 #[entry]
 fn main() -> ! {
     let Some(cp) = cortex_m::Peripherals::take() else {
-        debug::exit(EXIT_FAILURE);
-        loop {
-            cortex_m::asm::wfi();
-        }
+        fail("peripherals")
     };
     let c = Counter::new(cp.SYST);
     let mut ok = true;
-    scheme_rows!(&c, ok, Euler);
-    scheme_rows!(&c, ok, Rk2);
-    scheme_rows!(&c, ok, Rk3);
-    scheme_rows!(&c, ok, Rk4);
-    scheme_rows!(&c, ok, Rk5);
-    scheme_rows!(&c, ok, ExpMap);
-    scheme_rows!(&c, ok, Magnus4);
-    scheme_rows!(&c, ok, Cf4);
-    // The compensated (Kahan) accumulator, for the cost ratio against the plain rows above.
-    for (label, v) in [
-        (
-            "ExpMap FirstOrder hold",
-            measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, FirstOrder, 64),
-        ),
-        (
-            "ExpMap FirstOrder linear",
-            measure_kahan::<f32, _, _, LINEAR>(&c, ExpMap, FirstOrder, 64),
-        ),
-        (
-            "Rk4 FirstOrder linear",
-            measure_kahan::<f32, _, _, LINEAR>(&c, Rk4, FirstOrder, 64),
-        ),
-        (
-            "ExpMap Off hold",
-            measure_kahan::<f32, _, _, HOLD>(&c, ExpMap, Off, 64),
-        ),
-    ] {
-        ok &= v != u32::MAX;
-        defmt::println!("kahan f32 {=str} {=u32}.{=u32:02}", label, v / 100, v % 100);
-    }
-    // Soft-float f64 on the single-precision FPU (16 steps keep the count below SysTick's wrap).
-    row!(&c, ok, f64, "f64", 16, Rk4, FirstOrder, "FirstOrder");
-    row!(&c, ok, f64, "f64", 16, ExpMap, FirstOrder, "FirstOrder");
-    defmt::println!("bench done");
-    debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
+    schemes(&c, &mut ok, Hold);
+    schemes(&c, &mut ok, Linear::new());
+    schemes(&c, &mut ok, History::new());
+    schemes(&c, &mut ok, TwiceRate::new());
+    schemes(&c, &mut ok, GaussPoints::new());
+    schemes(&c, &mut ok, DeltaAngles::new(TwoSample));
 
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
-    debug::exit(EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
+    // The quick start: (its cost on QS_SAMPLES samples − its cost on none) per sample.
+    let w = rates();
+    let mut samples = [GyroSample::new(Vec3::ZERO); QS_SAMPLES];
+    for (i, s) in samples.iter_mut().enumerate() {
+        *s = GyroSample::new(w[i & 7]);
     }
+    let (full, accepted) = quickstart(&c, &samples);
+    let (empty, _) = quickstart(&c, &[]);
+    ok &= accepted;
+    let per = (u64::from(full.saturating_sub(empty)) * 100 / QS_SAMPLES as u64) as u32;
+    defmt::println!(
+        "bench quickstart attitude_from per-sample {=u32}.{=u32:02} (samples={=usize}, fixed={=u32})",
+        per / 100,
+        per % 100,
+        QS_SAMPLES,
+        empty
+    );
+    defmt::println!("bench done");
+    exit(ok)
 }

@@ -1,26 +1,24 @@
 //! The ISR-to-main sample path: SysTick interrupts at 1 kHz synthesize gyro samples (the smoke's coning
-//! rates) into a `heapless::spsc::Queue`; `main` drains the queue and propagates with Rk4 + FirstOrder,
-//! `step_linear` between consecutive samples. At the end it checks that every sample arrived exactly once,
-//! in order (overflows are counted and reported, never silent), and that the attitude is bit-identical to
-//! the same samples propagated without the interrupt path (the smoke scene `coning-linear`, which the host
-//! snapshot test also checks).
+//! rates) into a `heapless::spsc::Queue`; `main` drains the queue and pushes every sample into the
+//! recommended configuration (ExpMap + History + FirstOrder). At the end it checks that every sample arrived
+//! exactly once, in order (overflows are counted and reported, never silent), and that the attitude is
+//! bit-identical to the same samples propagated without the interrupt path (the smoke scene
+//! `coning-history`, which the host snapshot test also checks).
 #![no_std]
 #![no_main]
 
 use core::cell::{Cell, RefCell};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::{entry, exception};
-use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 use critical_section::Mutex;
-use defmt_semihosting as _;
 use heapless::spsc::{Producer, Queue};
-use quatprop::scheme::{Method, Rk4};
-use quatprop::stabilize::{FirstOrder, Policy};
-use quatprop::{Propagator, Quat, Vec3};
-use quatprop_firmware::scenes::{bits, run, ConingRates, Scene, DT};
+use quatprop::input::History;
+use quatprop::scheme::{ExpMap, SchemeKind};
+use quatprop::stabilize::{FirstOrder, StabilizerKind};
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
+use quatprop_firmware::exit::{exit, fail};
+use quatprop_firmware::scenes::{bits, run, Config, ConingRates, Scene, DT, ISR_STEPS};
 
-/// Steps to propagate (one more sample than steps).
-const STEPS: u32 = 2_000;
 /// SysTick reload for a 1 kHz interrupt on the 25 MHz mps2 core clock.
 const RELOAD_1KHZ: u32 = 25_000 - 1;
 
@@ -37,16 +35,17 @@ static OVERFLOWS: Mutex<Cell<u32>> = Mutex::new(Cell::new(0));
 fn SysTick() {
     static mut GENERATOR: Option<ConingRates> = None;
     static mut NEXT: u32 = 0;
-    if *NEXT > STEPS {
+    if *NEXT > ISR_STEPS {
         return;
     }
     let rates = GENERATOR.get_or_insert_with(ConingRates::new);
+    if *NEXT > 0 {
+        rates.advance();
+    }
     let sample = Sample {
         index: *NEXT,
         rate: rates.rate(),
     };
-    rates.advance_half();
-    rates.advance_half();
     *NEXT += 1;
     critical_section::with(|cs| {
         let lost = match PRODUCER.borrow_ref_mut(cs).as_mut() {
@@ -71,22 +70,20 @@ fn main() -> ! {
     let Some(mut cp) = cortex_m::Peripherals::take() else {
         fail("peripherals")
     };
+    let Ok(mut p) = Propagator::new(Quat::<f32>::IDENTITY, ExpMap, History::new(), FirstOrder) else {
+        fail("propagator")
+    };
     cp.SYST.set_clock_source(SystClkSource::Core);
     cp.SYST.set_reload(RELOAD_1KHZ);
     cp.SYST.clear_current();
     cp.SYST.enable_interrupt();
     cp.SYST.enable_counter();
 
-    let mut p = match Propagator::new(Quat::<f32>::IDENTITY, Rk4, FirstOrder) {
-        Ok(p) => p,
-        Err(_) => fail("propagator"),
-    };
     let mut expected_index = 0u32;
-    let mut prev: Option<Vec3<f32>> = None;
     let mut out_of_order = 0u32;
     let mut refused = 0u32;
     let mut max_backlog = 0usize;
-    while expected_index <= STEPS {
+    while expected_index <= ISR_STEPS {
         max_backlog = max_backlog.max(consumer.len());
         match consumer.dequeue() {
             Some(s) => {
@@ -94,10 +91,7 @@ fn main() -> ! {
                     out_of_order += 1;
                 }
                 expected_index = s.index + 1;
-                if let Some(w0) = prev {
-                    refused += p.step_linear(w0, s.rate, DT).is_err() as u32;
-                }
-                prev = Some(s.rate);
+                refused += p.push(GyroSample::new(s.rate), DT).is_err() as u32;
             }
             None => {
                 let lost = critical_section::with(|cs| OVERFLOWS.borrow(cs).get());
@@ -111,13 +105,14 @@ fn main() -> ! {
     cp.SYST.disable_interrupt();
     let overflows = critical_section::with(|cs| OVERFLOWS.borrow(cs).get());
     let q = p.attitude();
-    let reference = run(Scene::ConingLinear, Method::Rk4, Policy::FirstOrder, STEPS).q;
+    let direct = Config::Post(SchemeKind::ExpMap, StabilizerKind::FirstOrder);
+    let reference = run(Scene::ConingHistory, direct, ISR_STEPS).q;
     let identical = bits(q.w) == bits(reference.w)
         && bits(q.x) == bits(reference.x)
         && bits(q.y) == bits(reference.y)
         && bits(q.z) == bits(reference.z);
     defmt::println!(
-        "isr coning-linear Rk4 FirstOrder {=u32:08x} {=u32:08x} {=u32:08x} {=u32:08x} steps={=u64}",
+        "isr coning-history ExpMap FirstOrder {=u32:08x} {=u32:08x} {=u32:08x} {=u32:08x} steps={=u64}",
         bits(q.w),
         bits(q.x),
         bits(q.y),
@@ -133,30 +128,10 @@ fn main() -> ! {
         max_backlog,
         identical
     );
-    let ok = overflows == 0
+    exit(overflows == 0
         && out_of_order == 0
         && refused == 0
-        && expected_index == STEPS + 1
-        && p.steps() == STEPS as u64
-        && identical;
-    debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-fn fail(what: &str) -> ! {
-    defmt::println!("isr setup failed: {=str}", what);
-    debug::exit(EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
-    debug::exit(EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+        && expected_index == ISR_STEPS + 1
+        && p.steps() == u64::from(ISR_STEPS)
+        && identical)
 }

@@ -1,4 +1,4 @@
-//! The flash floor of a real use: one scheme + `FirstOrder`, `step_linear` in f32, no defmt, no formatting.
+//! The flash floor of a real use: one scheme + `History` + `FirstOrder` in f32, no defmt, no formatting.
 //! The scheme is Rk4 unless a `scheme-*` feature picks another (for the per-scheme size table).
 //! Exits 0 if a 1 rad/s yaw over 1000 steps of 1 ms lands at 1 rad (quaternion components within 1e-4).
 #![no_std]
@@ -6,9 +6,10 @@
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
+use quatprop::input::History;
 use quatprop::stabilize::FirstOrder;
-use quatprop::{scheme, Propagator, Quat, Vec3};
+use quatprop::{scheme, GyroSample, Propagator, Quat, Vec3};
+use quatprop_firmware::exit::exit;
 
 #[cfg(feature = "scheme-euler")]
 type S = scheme::Euler;
@@ -20,43 +21,40 @@ type S = scheme::Rk3;
 type S = scheme::Rk5;
 #[cfg(feature = "scheme-expmap")]
 type S = scheme::ExpMap;
+#[cfg(feature = "scheme-magnus4")]
+type S = scheme::Magnus4;
+#[cfg(feature = "scheme-cf4")]
+type S = scheme::Cf4;
 #[cfg(not(any(
     feature = "scheme-euler",
     feature = "scheme-rk2",
     feature = "scheme-rk3",
     feature = "scheme-rk5",
-    feature = "scheme-expmap"
+    feature = "scheme-expmap",
+    feature = "scheme-magnus4",
+    feature = "scheme-cf4"
 )))]
 type S = scheme::Rk4;
 
 #[entry]
 fn main() -> ! {
-    let ok = match Propagator::new(Quat::<f32>::IDENTITY, S::default(), FirstOrder) {
+    let ok = match Propagator::new(Quat::<f32>::IDENTITY, S::default(), History::new(), FirstOrder) {
         Ok(mut p) => {
             let mut refused = false;
-            let mut prev = Vec3::new(0.0, 0.0, 1.0);
-            for _ in 0..1000 {
+            // 1001 samples: the first only starts the history.
+            for _ in 0..=1000 {
                 // black_box: the inputs are data, as from a sensor.
                 let w = black_box(Vec3::new(0.0_f32, 0.0, 1.0));
-                refused |= p.step_linear(prev, w, black_box(1.0e-3)).is_err();
-                prev = w;
+                refused |= p.push(GyroSample::new(w), black_box(1.0e-3)).is_err();
             }
             // 1 rad of yaw: q = (cos ½, 0, 0, sin ½).
             let q = p.attitude();
-            !refused && (q.w - 0.877_582_6).abs() < 1e-4 && (q.z - 0.479_425_55).abs() < 1e-4
+            !refused
+                && p.steps() == 1000
+                && (q.w - 0.877_582_6).abs() < 1e-4
+                && (q.z - 0.479_425_55).abs() < 1e-4
         }
         Err(_) => false,
     };
-    debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
-    debug::exit(EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    exit(ok)
 }

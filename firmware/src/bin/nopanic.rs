@@ -1,112 +1,98 @@
-//! Panic-freedom proven by the linker: every step entry point of the library (hold, linear, mid, Gauss,
-//! sample history, delta angles with every coning correction, gyro samples), for every scheme × stabilizer,
-//! plus construction and `set_attitude`, is called with opaque inputs. The panic handler calls a function
-//! that does not exist, so if any panic path is still reachable after optimization, the link fails with
-//! "undefined symbol: quatprop_step_path_can_panic". Built (not run) by CI:
-//! `cargo build --manifest-path firmware/Cargo.toml --release --target thumbv7em-none-eabihf --bin nopanic`.
+//! Panic-freedom proven by the linker: `Propagator::push` (and construction, `with_accumulator`,
+//! `set_attitude`, `restart_input` and the getters) is called with opaque inputs for every input model ×
+//! scheme (the eight zero-sized ones, the run-time `SchemeKind`, Baumgarte on each Runge–Kutta scheme) ×
+//! stabilizer (four zero-sized, the run-time `StabilizerKind`) × accumulator (`Plain`, `Kahan`): see
+//! `quatprop_firmware::configs`. The panic handler is the `panic-never` crate's, which references a symbol
+//! that does not exist, so if any panic path is still reachable after optimization the link fails.
+//!
+//! Built, not run:
+//! `cargo build --release --target <triple> --no-default-features --features panic-never --bin nopanic`.
+//! For the micro:bit's 256 KB flash, add one `nopanic-<input>` feature per image (none: every input model).
 #![no_std]
 #![no_main]
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use quatprop::coning::{self, ConingCorrection};
-use quatprop::scheme::{Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme};
-use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Policy, Stabilizer};
-use quatprop::{GyroSample, Propagator, Quat, SampleHistory, Vec3};
+use quatprop::accumulate::Accumulator;
+use quatprop::input::coning::{ConingKind, TwoSample};
+use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
+use quatprop::scheme::Scheme;
+use quatprop::stabilize::Stabilizer;
+use quatprop::{Propagator, Quat, Vec3};
+use quatprop_firmware::configs::{each_scheme, Input, Label, Visitor};
 
-fn v() -> Vec3<f32> {
-    black_box(Vec3::new(0.1, -0.2, 0.3))
+struct Exercise;
+
+impl Visitor for Exercise {
+    fn visit<S, I, Z, A>(&mut self, scheme: S, input: I, stabilizer: Z, accumulator: A, _: Label)
+    where
+        S: Scheme<f32>,
+        I: Input,
+        Z: Stabilizer,
+        A: Accumulator<f32>,
+    {
+        exercise(scheme, input, stabilizer, accumulator);
+    }
 }
 
 #[inline(never)]
-fn exercise<S: Scheme, Z: Stabilizer<f32>>(s: S, z: Z) {
-    let dt = black_box(1e-3_f32);
+fn exercise<S: Scheme<f32>, I: Input, Z: Stabilizer, A: Accumulator<f32>>(
+    scheme: S,
+    input: I,
+    stabilizer: Z,
+    accumulator: A,
+) {
     let q0 = black_box(Quat::new(1.0_f32, 0.0, 0.0, 0.0));
-    let Ok(mut p) = Propagator::new(q0, s, z) else {
+    let Ok(p) = Propagator::new(q0, scheme, input, stabilizer) else {
         return;
     };
-    let _ = black_box(p.step_hold(v(), dt));
-    let _ = black_box(p.step_linear(v(), v(), dt));
-    let _ = black_box(p.step_mid(v(), v(), v(), dt));
-    let _ = black_box(p.step_gauss(v(), v(), dt));
-    let mut h = black_box(SampleHistory::new());
-    let _ = black_box(p.step_history(&mut h, v(), dt));
-    let sample = black_box(GyroSample {
-        rate: v(),
-        saturated: true,
-    });
-    let _ = black_box(p.step_hold_sample(sample, dt));
-    let _ = black_box(p.step_linear_samples(sample, sample, dt));
-    let incs = black_box([v(), v(), v(), v(), v()]);
-    let n = black_box(3usize);
-    // Any slice length, with the runtime enum and with each zero-sized correction.
-    let slice = incs.get(..n).unwrap_or(&incs);
-    for m in coning::Method::ALL {
-        let _ = black_box(p.step_delta(m, slice, dt));
+    let mut p = p.with_accumulator(accumulator);
+    for _ in 0..black_box(8) {
+        let dt = black_box(1.0e-3_f32);
+        let sample = black_box(input.sample(black_box(Vec3::new(0.1, -0.2, 0.3)), dt));
+        let _ = black_box(p.push(sample, dt));
     }
-    delta(&mut p, coning::Uncorrected, slice, dt);
-    delta(&mut p, coning::OnePlusPrevious, slice, dt);
-    delta(&mut p, coning::TwoSample, slice, dt);
-    delta(&mut p, coning::ThreeSample, slice, dt);
-    delta(&mut p, coning::FourSample, slice, dt);
-    delta(&mut p, coning::FiveSample, slice, dt);
     let _ = black_box(p.set_attitude(black_box(q0)));
-    black_box(p.attitude());
-    black_box(p.norm_error());
-    // The compensated state.
-    if let Ok(mut c) = Propagator::new_compensated(q0, s, z) {
-        let _ = black_box(c.step_linear(v(), v(), dt));
+    if black_box(true) {
+        p.restart_input();
     }
+    black_box((p.attitude(), p.norm_error(), p.steps(), p.corrections()));
+    black_box((p.saturated_samples(), p.input(), p.scheme(), p.stabilizer()));
 }
 
-fn delta<S: Scheme, Z: Stabilizer<f32>, C: ConingCorrection>(
-    p: &mut Propagator<f32, S, Z>,
-    c: C,
-    incs: &[Vec3<f32>],
-    dt: f32,
-) {
-    let _ = black_box(p.step_delta(c, incs, dt));
-}
-
-macro_rules! every_stabilizer {
-    ($s:expr) => {{
-        exercise($s, Off);
-        exercise($s, Normalize);
-        exercise($s, FirstOrder);
-        exercise($s, Every(black_box(16)));
-        exercise(
-            $s,
-            Baumgarte {
-                k: black_box(0.5_f32),
-            },
-        );
-        exercise($s, black_box(Policy::<f32>::FirstOrder));
-    }};
-}
+const ALL: bool = !cfg!(any(
+    feature = "nopanic-hold",
+    feature = "nopanic-linear",
+    feature = "nopanic-history",
+    feature = "nopanic-twice-rate",
+    feature = "nopanic-gauss-points",
+    feature = "nopanic-delta-angles"
+));
 
 #[entry]
 fn main() -> ! {
-    every_stabilizer!(Euler);
-    every_stabilizer!(Rk2);
-    every_stabilizer!(Rk3);
-    every_stabilizer!(Rk4);
-    every_stabilizer!(Rk5);
-    every_stabilizer!(ExpMap);
-    every_stabilizer!(Magnus4);
-    every_stabilizer!(Cf4);
-    every_stabilizer!(black_box(quatprop::scheme::Method::Rk4));
+    let v = &mut Exercise;
+    if ALL || cfg!(feature = "nopanic-hold") {
+        each_scheme(v, Hold);
+    }
+    if ALL || cfg!(feature = "nopanic-linear") {
+        each_scheme(v, Linear::new());
+    }
+    if ALL || cfg!(feature = "nopanic-history") {
+        each_scheme(v, History::new());
+    }
+    if ALL || cfg!(feature = "nopanic-twice-rate") {
+        each_scheme(v, TwiceRate::new());
+    }
+    if ALL || cfg!(feature = "nopanic-gauss-points") {
+        each_scheme(v, GaussPoints::new());
+    }
+    if ALL || cfg!(feature = "nopanic-delta-angles") {
+        each_scheme(v, DeltaAngles::new(TwoSample));
+        // Every coning correction's code, behind the run-time choice.
+        each_scheme(v, DeltaAngles::new(black_box(ConingKind::FiveSample)));
+    }
     loop {
         cortex_m::asm::wfi();
     }
-}
-
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
-    extern "C" {
-        // Deliberately never defined: referencing it from a reachable panic path fails the link.
-        fn quatprop_step_path_can_panic() -> !;
-    }
-    // SAFETY: never executes; the call only exists if a panic path survived optimization, and then the
-    // image does not link at all.
-    unsafe { quatprop_step_path_can_panic() }
 }

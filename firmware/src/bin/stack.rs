@@ -1,27 +1,30 @@
-//! Worst-case stack use of one step, for every scheme × stabilizer in f32 on the Cortex-M4F, measured by
-//! painting: the free stack below SP is filled with a pattern, a propagator is built and stepped once with
-//! `step_mid` (the input model with the most live values), and the deepest overwritten word gives the depth.
-//! The figure includes the propagator value itself and the call into the step. The exponential-map family is
-//! also measured with a large step (the trigonometric branch, which calls libm). Fails (exit 1) if any depth
-//! exceeds `BOUND`. Run: `cargo run --manifest-path firmware/Cargo.toml --release --target
-//! thumbv7em-none-eabihf --bin stack`.
+//! Worst-case stack use of a push, for every configuration in f32 on the Cortex-M4F (every input model ×
+//! scheme × stabilizer × accumulator of `quatprop_firmware::configs`), measured by painting: the free stack
+//! below SP is filled with a pattern, a propagator is built, warmed up and pushed until it has taken a full
+//! step (History: four samples), and the deepest overwritten word gives the depth. The figure includes the
+//! propagator value itself and the calls into `push`. Every configuration runs twice: small steps (the
+//! polynomial / Taylor paths) and 0.3 rad steps (300 rad/s at 1 kHz: the exponential maps' trigonometric
+//! branch, which calls libm). Fails (exit 1) if any depth exceeds its bound.
+//! Run: `cd firmware && cargo run --release --bin stack`.
 #![no_std]
 #![no_main]
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
-use defmt_semihosting as _;
-use quatprop::scheme::{Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme};
-use quatprop::stabilize::{Baumgarte, Every, FirstOrder, Normalize, Off, Stabilizer};
+use quatprop::accumulate::Accumulator;
+use quatprop::scheme::Scheme;
+use quatprop::stabilize::Stabilizer;
 use quatprop::{Propagator, Quat, Vec3};
+use quatprop_firmware::configs::{each_input, Input, Label, Visitor};
+use quatprop_firmware::exit::exit;
 
-/// Bound for steps on the polynomial / Taylor path (bytes): measured 144–224 (Rk5 deepest) with rustc 1.95;
-/// the bound leaves room for compiler drift and is what README promises for stack sizing.
-const BOUND_SMALL: usize = 256;
-/// Bound when the exponential map takes its trigonometric branch (steps above 0.2 rad in f32): libm's
-/// `sinf`/`cosf` argument reduction keeps arrays on the stack; measured 1064 bytes.
-const BOUND_LARGE: usize = 1280;
+/// Bound for steps on the polynomial / Taylor paths (bytes). Measured with rustc 1.95 (quatprop 0.2): 248
+/// (Hold + Euler) to 1012 (History + SchemeKind + Normalize + Kahan); DeltaAngles needs 840–930. The bound
+/// leaves about 25 % for compiler drift.
+const BOUND_SMALL: usize = 1280;
+/// Bound with the exponential maps' trigonometric branch (libm's `sinf`/`cosf` argument reduction keeps
+/// arrays on the stack): measured up to 1712 (DeltaAngles + Magnus4).
+const BOUND_LARGE: usize = 2048;
 const PAINT: u32 = 0xA5A5_A5A5;
 /// Painted depth below the measuring frame (bytes).
 const DEPTH: usize = 4096;
@@ -29,7 +32,7 @@ const DEPTH: usize = 4096;
 const MARGIN: usize = 64;
 
 #[inline(never)]
-fn measure(f: &dyn Fn()) -> usize {
+fn measure(f: &dyn Fn() -> u64) -> (usize, u64) {
     let sp = cortex_m::register::msp::read() as usize;
     let top = sp - MARGIN;
     let bottom = sp - DEPTH;
@@ -40,7 +43,7 @@ fn measure(f: &dyn Fn()) -> usize {
         unsafe { core::ptr::write_volatile(a as *mut u32, PAINT) };
         a += 4;
     }
-    f();
+    let steps = f();
     let mut lowest = top;
     let mut a = bottom;
     while a < top {
@@ -51,78 +54,135 @@ fn measure(f: &dyn Fn()) -> usize {
         }
         a += 4;
     }
-    sp - lowest
+    (sp - lowest, steps)
 }
 
+/// Builds a propagator and pushes until it took a full step; returns its step count.
 #[inline(never)]
-fn one_step<S: Scheme, Z: Stabilizer<f32>>(s: S, z: Z, angle: f32) {
-    let dt = black_box(1e-3_f32);
-    let w = black_box(Vec3::new(angle, -0.2, 0.3));
-    if let Ok(mut p) = Propagator::new(black_box(Quat::<f32>::IDENTITY), s, z) {
-        let _ = black_box(p.step_mid(w, w, w, dt));
-        black_box(p);
+fn pushed<S: Scheme<f32>, I: Input, Z: Stabilizer, A: Accumulator<f32>>(
+    scheme: S,
+    input: I,
+    stabilizer: Z,
+    accumulator: A,
+    rate: f32,
+) -> u64 {
+    let dt = black_box(1.0e-3 / input.per_step() as f32);
+    let w = black_box(Vec3::new(rate, -0.2, 0.3));
+    let Ok(p) = Propagator::new(black_box(Quat::IDENTITY), scheme, input, stabilizer) else {
+        return 0;
+    };
+    let mut p = p.with_accumulator(accumulator);
+    for _ in 0..input.warm_up() + input.per_step() {
+        let _ = black_box(p.push(input.sample(w, dt), dt));
+    }
+    black_box(p).steps()
+}
+
+#[derive(Default)]
+struct Worst {
+    /// Deepest small-step and large-step figures of the current (input, scheme) row.
+    row: Option<(&'static str, &'static str, usize, usize)>,
+    small: usize,
+    large: usize,
+    small_at: Option<Label>,
+    large_at: Option<Label>,
+    configurations: u32,
+    ok: bool,
+}
+
+impl Worst {
+    fn flush(&mut self) {
+        if let Some((input, scheme, s, l)) = self.row.take() {
+            defmt::println!(
+                "stack {=str} {=str} small={=usize} large={=usize}",
+                input,
+                scheme,
+                s,
+                l
+            );
+        }
     }
 }
 
-macro_rules! rows {
-    ($worst:ident, $bound:expr, $ok:ident, $s:expr, $angle:expr, $label:expr) => {{
-        for (name, d) in [
-            ("Off", measure(&|| one_step($s, Off, $angle))),
-            ("Normalize", measure(&|| one_step($s, Normalize, $angle))),
-            ("FirstOrder", measure(&|| one_step($s, FirstOrder, $angle))),
-            ("Every(16)", measure(&|| one_step($s, Every(16), $angle))),
-            (
-                "Baumgarte",
-                measure(&|| one_step($s, Baumgarte { k: 0.5_f32 }, $angle)),
-            ),
-        ] {
-            $worst = $worst.max(d);
-            $ok &= d > 0 && d <= $bound;
+impl Visitor for Worst {
+    fn visit<S, I, Z, A>(&mut self, scheme: S, input: I, stabilizer: Z, accumulator: A, label: Label)
+    where
+        S: Scheme<f32>,
+        I: Input,
+        Z: Stabilizer,
+        A: Accumulator<f32>,
+    {
+        let (s, s_steps) = measure(&|| pushed(scheme, input, stabilizer, accumulator, 0.1));
+        let (l, l_steps) = measure(&|| pushed(scheme, input, stabilizer, accumulator, 300.0));
+        self.configurations += 1;
+        let stepped = s_steps > 0 && l_steps > 0;
+        if !stepped {
             defmt::println!(
-                "stack {=str} {=str} {=str} {=usize}",
-                $s.name(),
-                name,
-                $label,
-                d
+                "stack {=str} {=str} {=str} {=str}: no step taken",
+                label.input,
+                label.scheme,
+                label.stabilizer,
+                label.accumulator
             );
         }
-    }};
+        self.ok &= stepped && s > 0 && s <= BOUND_SMALL && l > 0 && l <= BOUND_LARGE;
+        match self.row {
+            Some((i, sc, ref mut rs, ref mut rl)) if i == label.input && sc == label.scheme => {
+                *rs = (*rs).max(s);
+                *rl = (*rl).max(l);
+            }
+            _ => {
+                self.flush();
+                self.row = Some((label.input, label.scheme, s, l));
+            }
+        }
+        if s > self.small {
+            self.small = s;
+            self.small_at = Some(label);
+        }
+        if l > self.large {
+            self.large = l;
+            self.large_at = Some(label);
+        }
+    }
+}
+
+fn at(l: Option<Label>) -> Label {
+    l.unwrap_or(Label {
+        input: "-",
+        scheme: "-",
+        stabilizer: "-",
+        accumulator: "-",
+    })
 }
 
 #[entry]
 fn main() -> ! {
-    let mut ok = true;
-    let mut small = 0usize;
-    rows!(small, BOUND_SMALL, ok, Euler, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, Rk2, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, Rk3, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, Rk4, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, Rk5, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, ExpMap, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, Magnus4, 0.1, "small");
-    rows!(small, BOUND_SMALL, ok, Cf4, 0.1, "small");
-    // 300 rad/s at 1 ms: 0.3 rad per step, the exponential map's trigonometric branch.
-    let mut large = 0usize;
-    rows!(large, BOUND_LARGE, ok, ExpMap, 300.0, "large");
-    rows!(large, BOUND_LARGE, ok, Magnus4, 300.0, "large");
-    rows!(large, BOUND_LARGE, ok, Cf4, 300.0, "large");
+    let mut w = Worst {
+        ok: true,
+        ..Worst::default()
+    };
+    each_input(&mut w);
+    w.flush();
+    let (s, l) = (at(w.small_at), at(w.large_at));
     defmt::println!(
-        "stack worst small-step {=usize} (bound {=usize}), large-step {=usize} (bound {=usize})",
-        small,
+        "stack worst small-step {=usize} bytes (bound {=usize}) at {=str} {=str} {=str} {=str}",
+        w.small,
         BOUND_SMALL,
-        large,
-        BOUND_LARGE
+        s.input,
+        s.scheme,
+        s.stabilizer,
+        s.accumulator
     );
-    debug::exit(if ok { EXIT_SUCCESS } else { EXIT_FAILURE });
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
-    debug::exit(EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    defmt::println!(
+        "stack worst large-step {=usize} bytes (bound {=usize}) at {=str} {=str} {=str} {=str}",
+        w.large,
+        BOUND_LARGE,
+        l.input,
+        l.scheme,
+        l.stabilizer,
+        l.accumulator
+    );
+    defmt::println!("stack configurations={=u32}", w.configurations);
+    exit(w.ok)
 }
