@@ -1,23 +1,27 @@
 //! f32 round-off over a long coning stream: does the attitude keep what the f32 inputs carry?
 //!
-//! Run: `cargo run --release --example roundoff [-- --steps N]` (default 3·10⁶ steps, 50 min at 1 kHz).
+//! Run: `cargo run --release --example roundoff [-- --steps N] [--out DIR]` (default 3·10⁶ steps, 50 min at
+//! 1 kHz). Prints the Markdown tables; with `--out DIR` also writes them to `DIR/roundoff.md`.
 //!
 //! The stream is the exact per-step rotation vector of a coning motion (α = 0.3 rad at 1/√2 Hz, 1 kHz steps;
 //! the frequency is incommensurate with the step so the rounding errors do not repeat period after period),
 //! `φ_k = log(q(t_k)* ⊗ q(t_{k+1}))` computed in f64 and rounded to f32 — what an ideal delta-angle gyro with
 //! perfect coning compensation would deliver. No truncation error is left: every difference from the exact
-//! attitude is round-off. The same f32 stream feeds:
+//! attitude is round-off. The same f32 stream feeds, one `DeltaAngle` per push into
+//! `input::DeltaAngles::new(Uncorrected)`:
 //! - `peer form, f32`: `q ← normalize(q ⊗ exp_q(φ))`, what Fusion-, PX4- or glam-style code does;
 //! - `quatprop Plain, f32`: ExpMap + FirstOrder, increment form `q + q ⊗ (e − 1)`;
-//! - `quatprop Kahan, f32`: the same with the compensated accumulator (`Propagator::new_compensated`);
+//! - `quatprop Kahan, f32`: the same with the compensated accumulator (`with_accumulator(Kahan::new())`);
 //! - `f64 state`: ExpMap + FirstOrder in f64 fed the same f32 samples widened: the floor set by f32 inputs.
 //!
 //! `tests/roundoff.rs` runs this and asserts the compensated f32 state within 2× of the f64 state.
 
-use quatprop::coning::Uncorrected;
+use quatprop::accumulate::Kahan;
+use quatprop::input::coning::Uncorrected;
+use quatprop::input::DeltaAngles;
 use quatprop::scheme::ExpMap;
 use quatprop::stabilize::FirstOrder;
-use quatprop::{Propagator, Quat, Vec3};
+use quatprop::{DeltaAngle, Propagator, Quat, Vec3};
 
 /// Cone half-angle (rad).
 pub const ALPHA: f64 = 0.3;
@@ -25,6 +29,10 @@ pub const ALPHA: f64 = 0.3;
 pub const BIG_OMEGA: f64 = 2.0 * core::f64::consts::PI * core::f64::consts::FRAC_1_SQRT_2;
 /// Step (s): 1 kHz.
 pub const DT: f64 = 1e-3;
+/// Default number of steps.
+pub const DEFAULT_STEPS: u64 = 3_000_000;
+/// Body spins (rad/s about body z) of the two tables.
+pub const SPINS: [f64; 2] = [0.0, 1.0];
 
 /// Exact attitude at step k: coning with initial phase `phase0` (rad), times a steady body spin of `spin`
 /// rad/s about the body z axis (0 for pure coning). Both angles are reduced modulo 4π in f64.
@@ -67,10 +75,10 @@ pub fn run(
     let attitude = |k| attitude(k, phase0, spin);
     let q0 = attitude(0);
     let mut peer = Quat::<f32>::from_f64(q0);
-    let mut plain = Propagator::new(Quat::<f32>::from_f64(q0), ExpMap, FirstOrder).unwrap();
-    let mut kahan =
-        Propagator::new_compensated(Quat::<f32>::from_f64(q0), ExpMap, FirstOrder).unwrap();
-    let mut wide = Propagator::new(q0, ExpMap, FirstOrder).unwrap();
+    let input = DeltaAngles::new(Uncorrected);
+    let mut plain = Propagator::new(Quat::<f32>::from_f64(q0), ExpMap, input, FirstOrder).unwrap();
+    let mut kahan = plain.with_accumulator(Kahan::new());
+    let mut wide = Propagator::new(q0, ExpMap, DeltaAngles::new(Uncorrected), FirstOrder).unwrap();
     let mut prev = q0;
     let mut next_checkpoint = 1000u64;
     let row = |k: u64, peer: Quat<f32>, p: &Quat<f32>, kq: &Quat<f32>, w: &Quat<f64>| {
@@ -96,9 +104,9 @@ pub fn run(
         peer = (peer * Quat::from_rotation_vector(phi))
             .normalized()
             .unwrap_or(peer);
-        plain.step_delta(Uncorrected, &[phi], dt).unwrap();
-        kahan.step_delta(Uncorrected, &[phi], dt).unwrap();
-        wide.step_delta(Uncorrected, &[phi.to_f64()], DT).unwrap();
+        plain.push(DeltaAngle::new(phi), dt).unwrap();
+        kahan.push(DeltaAngle::new(phi), dt).unwrap();
+        wide.push(DeltaAngle::new(phi.to_f64()), DT).unwrap();
         if k + 1 == next_checkpoint {
             checkpoint(&row(
                 k + 1,
@@ -119,40 +127,84 @@ pub fn run(
     )
 }
 
+/// The tables as Markdown: conditions, then one table per body spin with a row per checkpoint.
+pub fn tables(steps: u64) -> String {
+    let mut s = String::new();
+    s.push_str(&format!(
+        "Coning α = {ALPHA} rad at 1/√2 Hz (Ω = {BIG_OMEGA:.6} rad/s), steps of {DT} s (1 kHz), {steps} steps. \
+         Input: the exact per-step rotation vector φ_k = log(q(t_k)* ⊗ q(t_k+1)), computed in f64 and rounded \
+         to f32, one `DeltaAngle` per push into `input::DeltaAngles::new(Uncorrected)` with `scheme::ExpMap` and \
+         `stabilize::FirstOrder`. No truncation error is left: every difference from the exact attitude is \
+         round-off.\n\n"
+    ));
+    s.push_str(
+        "Columns: error (rad) against the exact attitude, and in brackets each f32 state's own round-off: its \
+         angle (rad) to the f64 state fed the same f32 inputs. `peer` is `q ← normalize(q ⊗ exp_q(φ))` in f32; \
+         `Plain` and `Kahan` are quatprop's f32 propagator with plain and compensated (`accumulate::Kahan`) \
+         addition; `f64 state` is quatprop in f64 fed the same f32 samples widened (the floor the f32 inputs \
+         set). Rows: step counts spaced by √10, then the last step.\n",
+    );
+    for spin in SPINS {
+        s.push_str(&format!("\n## Spin {spin} rad/s about body z\n\n"));
+        s.push_str("| steps | peer normalize(q⊗exp φ), f32 | quatprop Plain, f32 | quatprop Kahan, f32 | f64 state, same f32 inputs |\n");
+        s.push_str("|---|---|---|---|---|\n");
+        let mut rows = Vec::new();
+        let last = run(steps, 0.0, spin, |r| rows.push(*r));
+        rows.push(last);
+        for r in rows {
+            s.push_str(&format!(
+                "| {} | {:.2e} ({:.1e}) | {:.2e} ({:.1e}) | {:.2e} ({:.1e}) | {:.2e} |\n",
+                r.steps,
+                r.peer_f32,
+                r.own[0],
+                r.plain_f32,
+                r.own[1],
+                r.kahan_f32,
+                r.own[2],
+                r.f64_state
+            ));
+        }
+    }
+    s
+}
+
 #[allow(dead_code)]
 fn main() {
-    let mut steps: u64 = 3_000_000;
+    let mut steps = DEFAULT_STEPS;
+    let mut out: Option<String> = None;
     let args: Vec<String> = std::env::args().collect();
-    if args.len() == 3 && args[1] == "--steps" {
-        steps = args[2].parse().unwrap_or_else(|_| {
-            eprintln!("--steps needs a positive integer");
-            std::process::exit(2)
-        });
-    } else if args.len() != 1 {
-        eprintln!("usage: roundoff [--steps N]");
-        std::process::exit(2);
-    }
-    println!("Coning α = {ALPHA} rad at 1/√2 Hz, exact per-step rotation vectors rounded to f32, 1 kHz.\n");
-    println!("Error against the exact attitude (rad), and in brackets each f32 state's own round-off: its angle to the");
-    println!("f64 state fed the same f32 inputs.\n");
-    let print = |r: &RoundoffRow| {
-        println!(
-            "| {} | {:.2e} ({:.1e}) | {:.2e} ({:.1e}) | {:.2e} ({:.1e}) | {:.2e} |",
-            r.steps,
-            r.peer_f32,
-            r.own[0],
-            r.plain_f32,
-            r.own[1],
-            r.kahan_f32,
-            r.own[2],
-            r.f64_state
-        )
+    let usage = || -> ! {
+        eprintln!("usage: roundoff [--steps N] [--out DIR]");
+        std::process::exit(2)
     };
-    for spin in [0.0, 1.0] {
-        println!("\nSpin {spin} rad/s about body z:\n");
-        println!("| steps | peer normalize(q⊗exp φ), f32 | quatprop Plain, f32 | quatprop Kahan, f32 | f64 state, same f32 inputs |");
-        println!("|---|---|---|---|---|");
-        let last = run(steps, 0.0, spin, print);
-        print(&last);
+    let mut i = 1;
+    while i < args.len() {
+        match (args[i].as_str(), args.get(i + 1)) {
+            ("--steps", Some(v)) => steps = v.parse().unwrap_or_else(|_| usage()),
+            ("--out", Some(v)) => out = Some(v.clone()),
+            _ => usage(),
+        }
+        i += 2;
+    }
+    let start = std::time::Instant::now();
+    let body = tables(steps);
+    let secs = start.elapsed().as_secs_f64();
+    println!("{body}");
+    eprintln!("roundoff: {secs:.1} s");
+    if let Some(dir) = out {
+        let mut command = format!("cargo run --release --example roundoff -- --out {dir}");
+        if steps != DEFAULT_STEPS {
+            command.push_str(&format!(" --steps {steps}"));
+        }
+        let doc = format!(
+            "Generated by `{command}` (this run took {secs:.0} s). Do not edit: rerun the command.\n\n\
+             # f32 round-off: plain, compensated and f64 states on the same samples\n\n{body}"
+        );
+        let path = std::path::Path::new(&dir).join("roundoff.md");
+        std::fs::write(&path, doc).unwrap_or_else(|e| {
+            eprintln!("cannot write {}: {e}", path.display());
+            std::process::exit(1)
+        });
+        eprintln!("wrote {}", path.display());
     }
 }

@@ -1,40 +1,91 @@
-//! Prints the README's scheme table: stages, stability bounds and the per-step norm factor, all derived
-//! from the tableaux at compile time (`src/scheme/tableau.rs`).
+//! Prints every scheme's `Information` record — order, stability bounds, Baumgarte's gain bound, and the
+//! per-step norm change at two step angles — all derived from the tableaux at compile time
+//! (`src/scheme/tableau.rs`); with `--out DIR` also writes it to `DIR/schemes.md`.
 //!
-//! Run: `cargo run --example schemes`
+//! Run: `cargo run --release --example schemes [-- --out DIR]`
 
-use quatprop::scheme::{ButcherTableau, Euler, Method, Rk2, Rk3, Rk4, Rk5, Scheme};
+use quatprop::scheme::{Baumgarte, Euler, Information, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind};
 
-fn stages(m: Method) -> String {
-    match m {
-        Method::Euler => Euler::STAGES.to_string(),
-        Method::Rk2 => Rk2::STAGES.to_string(),
-        Method::Rk3 => Rk3::STAGES.to_string(),
-        Method::Rk4 => Rk4::STAGES.to_string(),
-        Method::Rk5 => Rk5::STAGES.to_string(),
-        Method::ExpMap | Method::Magnus4 | Method::Cf4 => "–".to_string(),
+/// The two step angles `h|ω|` (rad) of the norm-change columns.
+pub const STEP_ANGLES: [f64; 2] = [0.2, 0.02];
+
+/// Baumgarte's gain bound `4k·h` for the Runge–Kutta schemes (`None` for the exponential maps, which
+/// Baumgarte cannot wrap).
+pub fn gain_step_limit(m: SchemeKind) -> Option<f64> {
+    // The bound does not depend on the gain; 0 is a valid one.
+    Some(match m {
+        SchemeKind::Euler => Baumgarte::new(Euler, 0.0_f64).ok()?.gain_step_limit(),
+        SchemeKind::Rk2 => Baumgarte::new(Rk2, 0.0_f64).ok()?.gain_step_limit(),
+        SchemeKind::Rk3 => Baumgarte::new(Rk3, 0.0_f64).ok()?.gain_step_limit(),
+        SchemeKind::Rk4 => Baumgarte::new(Rk4, 0.0_f64).ok()?.gain_step_limit(),
+        SchemeKind::Rk5 => Baumgarte::new(Rk5, 0.0_f64).ok()?.gain_step_limit(),
+        SchemeKind::ExpMap | SchemeKind::Magnus4 | SchemeKind::Cf4 => return None,
+    })
+}
+
+fn bound(v: Option<f64>) -> String {
+    match v {
+        Some(v) if v.is_finite() => format!("{v:.4}"),
+        Some(_) => "none".to_string(),
+        None => "–".to_string(),
     }
 }
 
+/// The table as Markdown.
+pub fn table() -> String {
+    let mut s = String::new();
+    s.push_str(
+        "Each scheme's `Scheme::information()`: classical order; the largest admitted step angle h·max|ω| \
+         (rad; a longer step is refused with `StepAngleBeyondStability`); the end of the stability interval on \
+         the negative real axis (dimensionless h·λ); Baumgarte's gain bound on 4k·h (dimensionless, half the \
+         real-axis interval; Runge–Kutta schemes only, a larger 4k·h is refused with `GainBeyondStability`); \
+         and `norm_change(h|ω|) = |R(ix)|² − 1`, x = h|ω|/2: the relative change of |q|² per step with a held \
+         rate and no stabilizer (negative: the scheme loses norm, as the seed's RK4 does by β).\n\n",
+    );
+    s.push_str(&format!(
+        // `\|` keeps the bars of |ω| inside their Markdown cells.
+        "| scheme | order | step-angle limit h·max\\|ω\\| (rad) | real-axis limit | Baumgarte limit 4kh | norm change at h\\|ω\\| = {} | at h\\|ω\\| = {} |\n",
+        STEP_ANGLES[0], STEP_ANGLES[1]
+    ));
+    s.push_str("|---|---|---|---|---|---|---|\n");
+    for m in SchemeKind::ALL {
+        let info: Information = Scheme::<f64>::information(&m);
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {:+.3e} | {:+.3e} |\n",
+            info.name,
+            info.order,
+            bound(Some(info.step_angle_limit)),
+            bound(Some(info.real_axis_limit)),
+            bound(gain_step_limit(m)),
+            info.norm_change(STEP_ANGLES[0]),
+            info.norm_change(STEP_ANGLES[1]),
+        ));
+    }
+    s
+}
+
 fn main() {
-    println!("| scheme | stages | step-angle bound H·|w| (rad) | Baumgarte bound 4kH (half the real-axis interval) | 1 − |R(ix)|² at H|w| = 0.2 | at H|w| = 0.02 |");
-    println!("|---|---|---|---|---|---|");
-    for m in Method::ALL {
-        let fmt = |v: f64| {
-            if v.is_finite() {
-                format!("{v:.4}")
-            } else {
-                "none".to_string()
-            }
-        };
-        println!(
-            "| {} | {} | {} | {} | {:+.3e} | {:+.3e} |",
-            m.name(),
-            stages(m),
-            fmt(m.step_angle_limit()),
-            fmt(m.gain_step_limit()),
-            0.0 - m.norm_change(0.2),
-            0.0 - m.norm_change(0.02),
+    let args: Vec<String> = std::env::args().collect();
+    let out = match args.as_slice() {
+        [_] => None,
+        [_, flag, dir] if flag == "--out" => Some(dir.clone()),
+        _ => {
+            eprintln!("usage: schemes [--out DIR]");
+            std::process::exit(2)
+        }
+    };
+    let body = table();
+    println!("{body}");
+    if let Some(dir) = out {
+        let doc = format!(
+            "Generated by `cargo run --release --example schemes -- --out {dir}`. Do not edit: rerun the \
+             command.\n\n# Schemes: order, stability bounds, norm change per step\n\n{body}"
         );
+        let path = std::path::Path::new(&dir).join("schemes.md");
+        std::fs::write(&path, doc).unwrap_or_else(|e| {
+            eprintln!("cannot write {}: {e}", path.display());
+            std::process::exit(1)
+        });
+        eprintln!("wrote {}", path.display());
     }
 }

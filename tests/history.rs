@@ -1,39 +1,23 @@
-//! Issue "beyond the peers", item 1: fourth order from one gyro sample per step, no latency.
-//! Coning α = 0.3 rad at 1 Hz (the notes' figures: trapezoid exponential map 3.6e-4 rad after 1 s at 100
-//! steps/s; the sample-history update 2.3e-7, order 4.00).
+//! Issue "beyond the peers", item 1: fourth order from one gyro sample per step, no latency
+//! (`input::History`). Coning α = 0.3 rad at 1 Hz (the notes' figures: trapezoid exponential map 3.6e-4 rad
+//! after 1 s at 100 steps/s; the sample-history update 2.3e-7, order 4.00).
 
 mod support;
 
-use quatprop::scheme::{ExpMap, Method};
+use quatprop::input::{History, Hold};
+use quatprop::scheme::{ExpMap, SchemeKind};
 use quatprop::stabilize::Off;
-use quatprop::{Propagator, SampleHistory, Vec3};
-use support::{loglog_slope, Coning};
+use quatprop::{GyroSample, Propagator, Vec3};
+use support::{loglog_slope, propagate, Coning, Input};
 
-/// Attitude error after `t_end` with one sample per step: history-based or trapezoid (linear).
-fn error(m: Method, history: bool, n: usize, t_end: f64) -> f64 {
+/// Attitude error after `t_end` with one sample per step: `History` (primed with the samples before t = 0,
+/// as for a gyro that was already running, so every step in [0, t_end] is a full cubic step) or `Linear`.
+fn error(m: SchemeKind, input: Input, n: usize, t_end: f64) -> f64 {
     let c = Coning::STANDARD;
-    let h = t_end / n as f64;
-    let mut p = Propagator::new(c.attitude(0.0), m, Off).unwrap();
-    if history {
-        // Samples before t = 0 exist for a running gyro: start the history three samples early, so every step
-        // in [0, t_end] is a full fourth-order step. (Starting cold costs the first two steps' lower order.)
-        let mut hist = SampleHistory::new();
-        for i in -3i64..=0 {
-            hist.push(c.rate(i as f64 * h));
-        }
-        for i in 1..=n {
-            p.step_history(&mut hist, c.rate(i as f64 * h), h).unwrap();
-        }
-    } else {
-        for i in 0..n {
-            p.step_linear(c.rate(i as f64 * h), c.rate((i + 1) as f64 * h), h)
-                .unwrap();
-        }
-    }
-    p.attitude()
-        .normalized()
+    let q = propagate::<f64, _, _>(m, Off, input, c.attitude(0.0), &|t| c.rate(t), t_end, n)
         .unwrap()
-        .angle_to(c.attitude(t_end))
+        .q;
+    q.normalized().unwrap().angle_to(c.attitude(t_end))
 }
 
 #[test]
@@ -41,24 +25,27 @@ fn sample_history_reaches_order_four_with_one_sample_per_step() {
     // The notes' reference point: 1 s, 100 steps per second. Their "trapezoid exponential map" is
     // exp(h(ω₀ + ω₁)/2) (PX4, glam); quatprop's linear ExpMap adds the commutator term and halves that error.
     let c = Coning::STANDARD;
-    let mut bare = Propagator::new(c.attitude(0.0), ExpMap, Off).unwrap();
+    let mut bare = Propagator::new(c.attitude(0.0), ExpMap, Hold, Off).unwrap();
     for i in 0..100 {
         let (w0, w1) = (c.rate(i as f64 * 0.01), c.rate((i + 1) as f64 * 0.01));
-        bare.step_hold((w0 + w1) * 0.5, 0.01).unwrap();
+        bare.push(GyroSample::new((w0 + w1) * 0.5), 0.01).unwrap();
     }
     let bare = bare.attitude().angle_to(c.attitude(1.0));
-    let linear = error(Method::ExpMap, false, 100, 1.0);
-    let hist = error(Method::ExpMap, true, 100, 1.0);
+    let linear = error(SchemeKind::ExpMap, Input::Linear, 100, 1.0);
+    let hist = error(SchemeKind::ExpMap, Input::History, 100, 1.0);
     println!(
         "1 s at 100 Hz: trapezoid exp map {bare:.2e} rad, with commutator {linear:.2e}, sample history {hist:.2e}"
     );
     assert!((bare / 3.6e-4 - 1.0).abs() < 0.05, "{bare:e}");
     assert!((hist / 2.3e-7 - 1.0).abs() < 0.05, "{hist:e}");
     assert!(hist < linear / 500.0);
-    for m in [Method::ExpMap, Method::Rk4] {
+    for m in [SchemeKind::ExpMap, SchemeKind::Rk4] {
         let ns = [50usize, 100, 200, 400];
         let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
-        let es: Vec<f64> = ns.iter().map(|&n| error(m, true, n, 0.7)).collect();
+        let es: Vec<f64> = ns
+            .iter()
+            .map(|&n| error(m, Input::History, n, 0.7))
+            .collect();
         let slope = loglog_slope(&hs, &es);
         println!("{m:?} with sample history: errors {es:?}, order {slope:.3}");
         assert!((slope - 4.0).abs() < 0.15, "{m:?}: order {slope}");
@@ -69,24 +56,56 @@ fn sample_history_reaches_order_four_with_one_sample_per_step() {
 fn start_up_orders_and_cold_start() {
     // Cold start: the first sample only starts the history, the second step is linear, the third quadratic.
     let c = Coning::STANDARD;
-    let mut p = Propagator::new(c.attitude(0.0), ExpMap, Off).unwrap();
-    let mut hist = SampleHistory::new();
+    let mut p = Propagator::new(c.attitude(0.0), ExpMap, History::new(), Off).unwrap();
     let h = 0.01;
-    p.step_history(&mut hist, c.rate(0.0), h).unwrap();
+    assert!(p.input().is_empty());
+    p.push(GyroSample::new(c.rate(0.0)), h).unwrap();
     assert_eq!(p.steps(), 0);
-    assert_eq!(hist.len(), 1);
+    assert_eq!(p.input().len(), 1);
+    assert_eq!(p.attitude(), c.attitude(0.0), "a starting sample moves nothing");
     for i in 1..=100 {
-        p.step_history(&mut hist, c.rate(i as f64 * h), h).unwrap();
+        p.push(GyroSample::new(c.rate(i as f64 * h)), h).unwrap();
+        assert_eq!(p.input().len(), (i + 1).min(3));
     }
     assert_eq!(p.steps(), 100);
-    assert_eq!(hist.len(), 3);
     let e = p.attitude().angle_to(c.attitude(1.0));
     // The two low-order start-up steps cost ~h³ each; still far below the trapezoid's 3.6e-4.
     assert!(e < 1e-5, "{e:e}");
-    // A refused sample leaves the history untouched.
-    let before = hist;
+    // A refused sample leaves the propagator, its history included, untouched.
+    let before = p;
     assert!(p
-        .step_history(&mut hist, Vec3::new(f64::NAN, 0.0, 0.0), h)
+        .push(GyroSample::new(Vec3::new(f64::NAN, 0.0, 0.0)), h)
         .is_err());
-    assert_eq!(hist, before);
+    assert_eq!(p, before);
+    // restart_input forgets the history (after a gap): the next sample only starts it again.
+    p.restart_input();
+    assert!(p.input().is_empty());
+    assert_eq!(p.attitude(), before.attitude());
+    p.push(GyroSample::new(c.rate(5.0)), h).unwrap();
+    assert_eq!((p.steps(), p.input().len()), (100, 1));
+}
+
+#[test]
+fn cold_start_costs_the_order_of_its_linear_first_step() {
+    // Without the prelude the run's first step is linear (local error O(h³)) and its second quadratic (O(h⁴)):
+    // the final error then falls as h³, one order below the primed history's h⁴, and stays above it.
+    let c = Coning::STANDARD;
+    let ns = [50usize, 100, 200, 400];
+    let mut cold = Vec::new();
+    for &n in &ns {
+        let h = 0.7 / n as f64;
+        let mut p = Propagator::new(c.attitude(0.0), ExpMap, History::new(), Off).unwrap();
+        for i in 0..=n {
+            p.push(GyroSample::new(c.rate(i as f64 * h)), h).unwrap();
+        }
+        assert_eq!(p.steps(), n as u64);
+        cold.push(p.attitude().angle_to(c.attitude(0.7)));
+    }
+    let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
+    let slope = loglog_slope(&hs, &cold);
+    println!("cold-started history: errors {cold:?}, order {slope:.3}");
+    assert!((slope - 3.0).abs() < 0.15, "order {slope}");
+    for (&n, &e) in ns.iter().zip(&cold) {
+        assert!(e > error(SchemeKind::ExpMap, Input::History, n, 0.7));
+    }
 }

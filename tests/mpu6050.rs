@@ -4,6 +4,7 @@
 use embedded_hal::i2c::ErrorKind;
 use embedded_hal_mock::eh1::i2c::{Mock, Transaction};
 use quatprop::gyro::{GyroError, GyroRange, Mpu6050, Mpu6050Model};
+use quatprop::input::{Hold, Linear};
 use quatprop::scheme::Rk4;
 use quatprop::stabilize::FirstOrder;
 use quatprop::{GyroSample, Propagator, Quat, Vec3};
@@ -112,25 +113,34 @@ fn bus_errors_are_errors_not_panics() {
 
 #[test]
 fn saturated_samples_are_integrated_and_counted() {
-    let mut p = Propagator::new(Quat::<f32>::IDENTITY, Rk4, FirstOrder).unwrap();
     let clipped = Mpu6050::<Mock>::convert([i16::MAX, 0, 0], GyroRange::Dps2000);
-    let fine = GyroSample {
-        rate: Vec3::new(0.1, 0.0, 0.0),
-        saturated: false,
-    };
-    p.step_linear_samples(fine, clipped, 1e-3).unwrap();
-    p.step_linear_samples(clipped, fine, 1e-3).unwrap();
-    p.step_hold_sample(clipped, 1e-3).unwrap();
-    assert_eq!(p.saturated_samples(), 2);
-    assert_eq!(p.steps(), 3);
-    // Integrated, not dropped: the attitude moved about x by ~ (½·34.9 + ½·34.9 + 34.9)·1e-3 rad.
+    assert!(clipped.saturated);
+    let full_scale = clipped.rate.x; // 2000 °/s · 32767/32768 ≈ 34.9 rad/s
+    let fine = GyroSample::new(Vec3::new(0.1, 0.0, 0.0));
+    // Linear input: fine (starts), clipped (a step), fine (a step): the clipped sample is counted once,
+    // and integrated in both steps it bounds.
+    let mut p = Propagator::new(Quat::<f32>::IDENTITY, Rk4, Linear::new(), FirstOrder).unwrap();
+    p.push(fine, 1e-3).unwrap();
+    p.push(clipped, 1e-3).unwrap();
+    p.push(fine, 1e-3).unwrap();
+    assert_eq!((p.saturated_samples(), p.steps()), (1, 2));
+    // Integrated, not dropped: the attitude moved about x by the two trapezoids, (0.1 + 34.9)·1e-3 rad.
     let angle = 2.0 * p.attitude().x.atan2(p.attitude().w);
-    assert!((angle - 0.0699).abs() < 1e-3, "{angle}");
-    // A refused step counts nothing.
+    let want = (0.1 + full_scale) * 1e-3;
+    assert!((angle - want).abs() < 1e-5, "{angle} vs {want}");
+    // Hold input: each clipped sample is a step of its own, counted.
+    let mut h = Propagator::new(Quat::<f32>::IDENTITY, Rk4, Hold, FirstOrder).unwrap();
+    h.push(clipped, 1e-3).unwrap();
+    h.push(fine, 1e-3).unwrap();
+    h.push(clipped, 1e-3).unwrap();
+    assert_eq!((h.saturated_samples(), h.steps()), (2, 3));
+    // A refused sample counts nothing, even flagged as saturated.
     let nan = GyroSample {
         rate: Vec3::new(f32::NAN, 0.0, 0.0),
         saturated: true,
     };
-    assert!(p.step_hold_sample(nan, 1e-3).is_err());
-    assert_eq!(p.saturated_samples(), 2);
+    let before = p;
+    assert!(p.push(nan, 1e-3).is_err());
+    assert_eq!(p, before);
+    assert_eq!(p.saturated_samples(), 1);
 }

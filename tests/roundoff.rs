@@ -8,11 +8,11 @@ mod roundoff;
 
 #[test]
 fn compensated_f32_state_is_within_2x_of_an_f64_state_over_3e6_coning_steps() {
-    for spin in [0.0, 1.0] {
-        let r = roundoff::run(3_000_000, 0.0, spin, |_| {});
+    for spin in roundoff::SPINS {
+        let r = roundoff::run(roundoff::DEFAULT_STEPS, 0.0, spin, |_| {});
         println!(
-            "spin {spin}: peer f32 {:.2e}, plain f32 {:.2e}, Kahan f32 {:.2e}, f64 state {:.2e}",
-            r.peer_f32, r.plain_f32, r.kahan_f32, r.f64_state
+            "spin {spin}: peer f32 {:.2e}, plain f32 {:.2e}, Kahan f32 {:.2e}, f64 state {:.2e}; own round-off peer {:.1e}, plain {:.1e}, Kahan {:.1e}",
+            r.peer_f32, r.plain_f32, r.kahan_f32, r.f64_state, r.own[0], r.own[1], r.own[2]
         );
         assert!(
             r.kahan_f32 <= 2.0 * r.f64_state,

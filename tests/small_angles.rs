@@ -2,22 +2,23 @@
 //! f32 can represent in f32 (peers drop it: nalgebra's f32 `from_scaled_axis` returns the identity below
 //! ~2.4e-7 rad, losing Earth rate at 1 kHz).
 
-use quatprop::scheme::Method;
-use quatprop::stabilize::Policy;
-use quatprop::{Propagator, Quat, Real, Vec3};
+use quatprop::input::Hold;
+use quatprop::scheme::SchemeKind;
+use quatprop::stabilize::Normalize;
+use quatprop::{GyroSample, Propagator, Quat, Real, Vec3};
 
-fn moved<T: Real>(m: Method, q0: Quat<T>, angle: f64) -> f64 {
-    let mut p = Propagator::new(q0, m, Policy::<T>::Normalize).unwrap();
+fn moved<T: Real>(m: SchemeKind, q0: Quat<T>, angle: f64) -> f64 {
+    let mut p = Propagator::new(q0, m, Hold, Normalize).unwrap();
     let start = p.attitude();
     let axis = Vec3::new(0.48, -0.6, 0.64);
     let w = Vec3::<T>::from_f64(axis * angle);
-    p.step_hold(w, T::ONE).unwrap();
+    p.push(GyroSample::new(w), T::ONE).unwrap();
     start.to_f64().angle_to(p.attitude().to_f64())
 }
 
 #[test]
 fn a_nanoradian_step_moves_the_attitude_by_a_nanoradian() {
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         for angle in [1e-9, 1e-12, 1e-20] {
             let d = moved::<f64>(m, Quat::IDENTITY, angle);
             assert!(
@@ -40,7 +41,7 @@ fn f32_from_a_general_attitude_moves_by_the_representable_amount() {
     // what f32 can represent there and the attitude stays put; a 1e-6 rad step is resolved to within the
     // representation's granularity (one ulp of the components ≈ 6e-8 rad in angle).
     let q0 = Quat::new(0.5_f32, 0.5, -0.5, 0.5);
-    for m in Method::ALL {
+    for m in SchemeKind::ALL {
         let d = moved::<f32>(m, q0, 1e-9);
         assert!(d <= 2.0 * 6e-8, "{m:?}: {d:e}");
         let d = moved::<f32>(m, q0, 1e-6);
