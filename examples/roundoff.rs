@@ -150,7 +150,9 @@ pub fn tables(steps: u64) -> String {
         s.push_str("|---|---|---|---|---|\n");
         let mut rows = Vec::new();
         let last = run(steps, 0.0, spin, |r| rows.push(*r));
-        rows.push(last);
+        if rows.last().map(|r| r.steps) != Some(last.steps) {
+            rows.push(last);
+        }
         for r in rows {
             s.push_str(&format!(
                 "| {} | {:.2e} ({:.1e}) | {:.2e} ({:.1e}) | {:.2e} ({:.1e}) | {:.2e} |\n",
