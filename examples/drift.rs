@@ -83,8 +83,8 @@ pub fn run_with<T: Real, S: Scheme<T>, Z: Stabilizer>(
 ) -> DriftRow {
     let w = Vec3::<T>::from_f64(RATE);
     let h = T::from_f64(STEP);
-    let mut p =
-        Propagator::new(Quat::<T>::IDENTITY, scheme, Hold, stabilizer).expect("valid configuration");
+    let mut p = Propagator::new(Quat::<T>::IDENTITY, scheme, Hold, stabilizer)
+        .expect("valid configuration");
     let mut max_abs_n: f64 = 0.0;
     let mut first_n = 0.0;
     let mut stopped = None;

@@ -53,7 +53,8 @@ fn measured_drift(m: Method, n: usize, per_period: usize, periods: usize) -> (f6
     let updates = per_period * periods;
     // The drift is the slope of the axial error between two whole-period checkpoints, which excludes the
     // one-time start-up error (OnePlusPrevious has no previous increment on its first update).
-    let axial_error = |p: &Propagator<f64, ExpMap, DeltaAngles<f64, Method>, Off, Kahan<f64>>, t: f64| {
+    let axial_error = |p: &Propagator<f64, ExpMap, DeltaAngles<f64, Method>, Off, Kahan<f64>>,
+                       t: f64| {
         (c.attitude(t).conjugate() * p.attitude())
             .to_rotation_vector()
             .z
@@ -216,7 +217,8 @@ fn increments_are_gathered_per_update_and_a_refused_one_changes_nothing() {
     let nan = DeltaAngle::new(Vec3::new(f32::NAN, 0.0, 0.0));
     for m in Method::ALL {
         let n = m.samples();
-        let mut clean = Propagator::new(Quat::<f32>::IDENTITY, ExpMap, DeltaAngles::new(m), Off).unwrap();
+        let mut clean =
+            Propagator::new(Quat::<f32>::IDENTITY, ExpMap, DeltaAngles::new(m), Off).unwrap();
         let mut noisy = clean;
         for k in 0..3 * n {
             clean.push(d(k), 1e-3).unwrap();
@@ -225,7 +227,11 @@ fn increments_are_gathered_per_update_and_a_refused_one_changes_nothing() {
             assert_eq!(noisy, before, "{m:?}");
             noisy.push(d(k), 1e-3).unwrap();
             assert_eq!(noisy, clean, "{m:?} after increment {k}");
-            assert_eq!(clean.steps(), ((k + 1) / n) as u64, "{m:?}: one update per {n} increments");
+            assert_eq!(
+                clean.steps(),
+                ((k + 1) / n) as u64,
+                "{m:?}: one update per {n} increments"
+            );
         }
         assert_eq!(clean.input().correction(), m);
     }

@@ -121,7 +121,9 @@ fn f32_and_f64_norm_error_stay_within_derived_bounds_for_every_stabilizer() {
         for z in Stabilization::ALL {
             let (Some(r32), Some(r64)) = (check_row::<f32>(m, z), check_row::<f64>(m, z)) else {
                 // Baumgarte is an option of the Runge–Kutta engine only.
-                assert!(Scheme::<f64>::information(&m).step_angle_limit.is_infinite());
+                assert!(Scheme::<f64>::information(&m)
+                    .step_angle_limit
+                    .is_infinite());
                 assert_eq!(z, Stabilization::Baumgarte);
                 continue;
             };

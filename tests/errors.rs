@@ -187,8 +187,18 @@ fn bad_initial_quaternions_and_stabilizers_are_refused() {
         Propagator::new(Quat::<f64>::IDENTITY, s, Hold, StabilizerKind::Every(0)).unwrap_err(),
         Error::InvalidStabilizer
     );
-    for k in [-1.0, -f64::MIN_POSITIVE, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        assert_eq!(Baumgarte::new(Rk4, k).unwrap_err(), Error::InvalidGain, "{k}");
+    for k in [
+        -1.0,
+        -f64::MIN_POSITIVE,
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ] {
+        assert_eq!(
+            Baumgarte::new(Rk4, k).unwrap_err(),
+            Error::InvalidGain,
+            "{k}"
+        );
     }
     // Zero and any finite positive gain are valid gains (a huge one is refused per step instead).
     for k in [0.0, f64::MIN_POSITIVE, f64::MAX] {
@@ -251,7 +261,8 @@ fn overflowing_rates_are_refused_not_propagated() {
     assert_eq!(p, before);
     // The exponential map has no bound: a huge but finite rotation is a valid (if meaningless) rotation,
     // computed without overflow, and the attitude stays finite and unit (Normalize: |N| ≤ 4ε).
-    let mut p = Propagator::new(Quat::<f32>::IDENTITY, SchemeKind::ExpMap, Hold, Normalize).unwrap();
+    let mut p =
+        Propagator::new(Quat::<f32>::IDENTITY, SchemeKind::ExpMap, Hold, Normalize).unwrap();
     p.push(huge, 1.0).unwrap();
     assert!(p.attitude().is_finite());
     assert!(p.norm_error().abs() <= 4.0 * f32::EPSILON);

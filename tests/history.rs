@@ -62,7 +62,11 @@ fn start_up_orders_and_cold_start() {
     p.push(GyroSample::new(c.rate(0.0)), h).unwrap();
     assert_eq!(p.steps(), 0);
     assert_eq!(p.input().len(), 1);
-    assert_eq!(p.attitude(), c.attitude(0.0), "a starting sample moves nothing");
+    assert_eq!(
+        p.attitude(),
+        c.attitude(0.0),
+        "a starting sample moves nothing"
+    );
     for i in 1..=100 {
         p.push(GyroSample::new(c.rate(i as f64 * h)), h).unwrap();
         assert_eq!(p.input().len(), (i + 1).min(3));

@@ -154,7 +154,11 @@ where
             return Ok(());
         }
     };
-    prop_assert!(p.norm_error().abs() <= 4.0 * f32::EPSILON, "new: {:e}", p.norm_error());
+    prop_assert!(
+        p.norm_error().abs() <= 4.0 * f32::EPSILON,
+        "new: {:e}",
+        p.norm_error()
+    );
     for &(call, v, dt, saturated) in calls {
         let before = p;
         let text = state(&p);
@@ -170,9 +174,16 @@ where
         };
         match r {
             Ok(()) => {
-                prop_assert!(p.attitude().is_finite(), "{scheme:?} {z:?}: non-finite attitude");
+                prop_assert!(
+                    p.attitude().is_finite(),
+                    "{scheme:?} {z:?}: non-finite attitude"
+                );
                 if kind == StabilizerKind::Normalize || call == 9 {
-                    prop_assert!(p.norm_error().abs() <= 4.0 * f32::EPSILON, "{:e}", p.norm_error());
+                    prop_assert!(
+                        p.norm_error().abs() <= 4.0 * f32::EPSILON,
+                        "{:e}",
+                        p.norm_error()
+                    );
                 }
                 if call == 9 {
                     continue;
@@ -221,12 +232,19 @@ where
                     Error::NonFiniteStep => seen.non_finite_step += 1,
                     Error::NonPositiveStep => seen.non_positive_step += 1,
                     Error::StepAngleBeyondStability { step_angle, limit } => {
-                        prop_assert!(!(step_angle <= limit), "{step_angle} ≤ {limit}");
+                        // NaN-safe: a NaN angle must not pass.
+                        prop_assert!(
+                            step_angle > limit || step_angle.is_nan(),
+                            "{step_angle} ≤ {limit}"
+                        );
                         prop_assert_eq!(limit, scheme.information().step_angle_limit);
                         seen.step_angle += 1;
                     }
                     Error::GainBeyondStability { gain_step, limit } => {
-                        prop_assert!(!(gain_step <= limit), "{gain_step} ≤ {limit}");
+                        prop_assert!(
+                            gain_step > limit || gain_step.is_nan(),
+                            "{gain_step} ≤ {limit}"
+                        );
                         seen.gain += 1;
                     }
                     Error::NonFiniteResult => seen.non_finite_result += 1,
@@ -259,7 +277,15 @@ fn every_input<S: Scheme<f32> + core::fmt::Debug + PartialEq>(
     invariant(scheme, Linear::new(), z, q0, calls, &gyro, &mut seen[1])?;
     invariant(scheme, History::new(), z, q0, calls, &gyro, &mut seen[2])?;
     invariant(scheme, TwiceRate::new(), z, q0, calls, &gyro, &mut seen[3])?;
-    invariant(scheme, GaussPoints::new(), z, q0, calls, &gyro, &mut seen[4])?;
+    invariant(
+        scheme,
+        GaussPoints::new(),
+        z,
+        q0,
+        calls,
+        &gyro,
+        &mut seen[4],
+    )?;
     invariant(
         scheme,
         DeltaAngles::new(coning),
@@ -304,15 +330,16 @@ fn check_case(
     }
 }
 
-fn any_case() -> impl Strategy<
-    Value = (
-        SchemeChoice,
-        StabilizerKind,
-        ConingKind,
-        (f32, f32, f32, f32),
-        Vec<Call>,
-    ),
-> {
+/// One generated case: scheme, stabilizer, coning correction, start attitude, calls.
+type Case = (
+    SchemeChoice,
+    StabilizerKind,
+    ConingKind,
+    (f32, f32, f32, f32),
+    Vec<Call>,
+);
+
+fn any_case() -> impl Strategy<Value = Case> {
     (
         any_scheme(),
         any_stabilizer(),
@@ -502,7 +529,12 @@ proptest! {
 }
 
 /// The attitude after each push and the correction count, Rk2 over two-sample delta angles with `z`.
-fn stabilized<Z: Stabilizer>(z: Z, q0: Quat<f32>, incs: &[Vec3<f32>], dt: f32) -> (Vec<Quat<f32>>, u64) {
+fn stabilized<Z: Stabilizer>(
+    z: Z,
+    q0: Quat<f32>,
+    incs: &[Vec3<f32>],
+    dt: f32,
+) -> (Vec<Quat<f32>>, u64) {
     let mut p = Propagator::new(q0, Rk2, DeltaAngles::new(TwoSample), z).unwrap();
     let mut out = Vec::new();
     for d in incs {
@@ -601,12 +633,22 @@ fn the_invariant_property_reaches_every_outcome() {
         check_case(s, z, coning, q0, &calls, &mut seen).unwrap();
     }
     println!("{seen:#?}");
-    for (model, o) in ["Hold", "Linear", "History", "TwiceRate", "GaussPoints", "DeltaAngles"]
-        .iter()
-        .zip(&seen)
+    for (model, o) in [
+        "Hold",
+        "Linear",
+        "History",
+        "TwiceRate",
+        "GaussPoints",
+        "DeltaAngles",
+    ]
+    .iter()
+    .zip(&seen)
     {
         assert!(o.steps > 0 && o.non_finite_rate > 0, "{model}: {o:?}");
-        assert!(o.non_finite_step > 0 && o.non_positive_step > 0, "{model}: {o:?}");
+        assert!(
+            o.non_finite_step > 0 && o.non_positive_step > 0,
+            "{model}: {o:?}"
+        );
         if *model != "Hold" {
             // Hold steps on every push; the others keep some samples without a step.
             assert!(o.kept > 0, "{model}: {o:?}");

@@ -51,12 +51,22 @@ fn saturation_on<I: InputModel<f64> + core::fmt::Debug + PartialEq>(
         if p.steps() == steps {
             started_or_pending += 1;
         }
-        assert_eq!(p.saturated_samples(), count, "{label}: accepted clipped sample {k}");
+        assert_eq!(
+            p.saturated_samples(),
+            count,
+            "{label}: accepted clipped sample {k}"
+        );
         // Refused for the sample, for dt, or (on a copy that reaches a closing push) for the step angle.
         let before = p;
         assert_eq!(p.push(sample(nan, true), 0.01), Err(Error::NonFiniteRate));
-        assert_eq!(p.push(sample(rate(k), true), 0.0), Err(Error::NonPositiveStep));
-        assert_eq!(p.push(sample(rate(k), true), f64::NAN), Err(Error::NonFiniteStep));
+        assert_eq!(
+            p.push(sample(rate(k), true), 0.0),
+            Err(Error::NonPositiveStep)
+        );
+        assert_eq!(
+            p.push(sample(rate(k), true), f64::NAN),
+            Err(Error::NonFiniteStep)
+        );
         assert_eq!(p, before, "{label}");
         let mut q = p;
         // 1.5× Rk4's bound over each 0.01 s sample.
@@ -83,7 +93,10 @@ fn saturation_on<I: InputModel<f64> + core::fmt::Debug + PartialEq>(
     if every_push_steps {
         assert_eq!(started_or_pending, 0, "{label}");
     } else {
-        assert!(started_or_pending > 0, "{label}: no starting or pending sample was checked");
+        assert!(
+            started_or_pending > 0,
+            "{label}: no starting or pending sample was checked"
+        );
     }
 }
 
@@ -110,7 +123,7 @@ fn refused_then_double_dt<I: InputModel<f64> + core::fmt::Debug + PartialEq>(
     input: I,
     sample: fn(Vec3<f64>, bool) -> I::Sample,
     skip: usize,
-) -> (Propagator<f64, ExpMap, I, Off>, Propagator<f64, ExpMap, I, Off>) {
+) {
     let c = Coning::STANDARD;
     let mut a = Propagator::new(c.attitude(0.0), ExpMap, input, Off).unwrap();
     let mut b = a;
@@ -130,7 +143,6 @@ fn refused_then_double_dt<I: InputModel<f64> + core::fmt::Debug + PartialEq>(
         assert_eq!(state(&a), state(&b));
     }
     assert!(a.steps() > 0);
-    (a, b)
 }
 
 #[test]
@@ -155,11 +167,15 @@ fn history_restarts_on_the_two_period_interval_with_a_linear_step_over_it() {
     let skip = 5;
     let mut p = Propagator::new(c.attitude(0.0), ExpMap, History::new(), Off).unwrap();
     for k in 0..skip {
-        p.push(GyroSample::new(c.rate(0.01 * k as f64)), 0.01).unwrap();
+        p.push(GyroSample::new(c.rate(0.01 * k as f64)), 0.01)
+            .unwrap();
     }
     assert_eq!(p.input().len(), 3);
     let before = p;
-    let (w_prev, w_next) = (c.rate(0.01 * (skip - 1) as f64), c.rate(0.01 * (skip + 1) as f64));
+    let (w_prev, w_next) = (
+        c.rate(0.01 * (skip - 1) as f64),
+        c.rate(0.01 * (skip + 1) as f64),
+    );
     p.push(GyroSample::new(w_next), 0.02).unwrap();
     // The restart kept only the last sample, then took this one.
     assert_eq!(p.input().len(), 2);
@@ -174,10 +190,16 @@ fn history_restarts_on_the_two_period_interval_with_a_linear_step_over_it() {
     let d = p.attitude().angle_to(linear.attitude());
     assert!(d <= 16.0 * f64::EPSILON, "{d:e}");
     // A further sample at the new spacing (0.01 again) restarts once more: dt differs from 0.02.
-    p.push(GyroSample::new(c.rate(0.01 * (skip + 2) as f64)), 0.01).unwrap();
+    p.push(GyroSample::new(c.rate(0.01 * (skip + 2) as f64)), 0.01)
+        .unwrap();
     assert_eq!(p.input().len(), 2);
-    p.push(GyroSample::new(c.rate(0.01 * (skip + 3) as f64)), 0.01).unwrap();
-    assert_eq!(p.input().len(), 3, "equal spacing builds the history up again");
+    p.push(GyroSample::new(c.rate(0.01 * (skip + 3) as f64)), 0.01)
+        .unwrap();
+    assert_eq!(
+        p.input().len(),
+        3,
+        "equal spacing builds the history up again"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -192,9 +214,17 @@ fn history_step_order_is_four_at_equal_spacing() {
         let es: Vec<f64> = ns
             .iter()
             .map(|&n| {
-                let q = propagate::<f64, _, _>(m, Off, Input::History, c.attitude(0.0), &|t| c.rate(t), 0.7, n)
-                    .unwrap()
-                    .q;
+                let q = propagate::<f64, _, _>(
+                    m,
+                    Off,
+                    Input::History,
+                    c.attitude(0.0),
+                    &|t| c.rate(t),
+                    0.7,
+                    n,
+                )
+                .unwrap()
+                .q;
                 q.normalized().unwrap().angle_to(c.attitude(0.7))
             })
             .collect();
@@ -230,7 +260,11 @@ fn history_restarts_at_unequal_spacing_and_still_converges() {
                 restarts += 1;
             }
         }
-        assert_eq!(restarts, 2 * (n / 8) - 1, "n = {n}: restarts on entering and leaving each long interval");
+        assert_eq!(
+            restarts,
+            2 * (n / 8) - 1,
+            "n = {n}: restarts on entering and leaving each long interval"
+        );
         hs.push(h);
         es.push(p.attitude().angle_to(c.attitude(t)));
     }
@@ -260,8 +294,17 @@ fn variant(e: &Error) -> &'static str {
 }
 
 /// `push` refuses with `want`, leaving the propagator bit for bit as it was.
-fn refused<T: Real, S: Scheme<T> + PartialEq + core::fmt::Debug, I: InputModel<T> + PartialEq + core::fmt::Debug>(
-    p: &mut Propagator<T, S, I, impl quatprop::stabilize::Stabilizer + PartialEq + core::fmt::Debug>,
+fn refused<
+    T: Real,
+    S: Scheme<T> + PartialEq + core::fmt::Debug,
+    I: InputModel<T> + PartialEq + core::fmt::Debug,
+>(
+    p: &mut Propagator<
+        T,
+        S,
+        I,
+        impl quatprop::stabilize::Stabilizer + PartialEq + core::fmt::Debug,
+    >,
     sample: I::Sample,
     dt: T,
     want: fn(&Error) -> bool,
@@ -308,27 +351,47 @@ fn every_error_variant_of_push_and_new_is_returned_for_its_input_with_the_state_
         p.push(w, 0.01).unwrap();
     }
     for dt in [0.0, -0.0, -0.01, -f64::MIN_POSITIVE] {
-        seen.insert(variant(&refused(&mut p, w, dt, |e| *e == Error::NonPositiveStep)));
+        seen.insert(variant(&refused(&mut p, w, dt, |e| {
+            *e == Error::NonPositiveStep
+        })));
     }
     for dt in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        seen.insert(variant(&refused(&mut p, w, dt, |e| *e == Error::NonFiniteStep)));
+        seen.insert(variant(&refused(&mut p, w, dt, |e| {
+            *e == Error::NonFiniteStep
+        })));
     }
     for bad in [f64::NAN, f64::INFINITY] {
         let s = GyroSample::new(Vec3::new(0.0, 0.0, bad));
-        seen.insert(variant(&refused(&mut p, s, 0.01, |e| *e == Error::NonFiniteRate)));
+        seen.insert(variant(&refused(&mut p, s, 0.01, |e| {
+            *e == Error::NonFiniteRate
+        })));
     }
     // Step angle: RK4 admits h·max|ω| ≤ 4√2 ≈ 5.66 rad; a 600 rad/s sample over 0.01 s is 6 rad (the kept
     // samples are far smaller, so the maximum is this one's).
-    let e = refused(&mut p, GyroSample::new(Vec3::new(600.0, 0.0, 0.0)), 0.01, |e| {
-        matches!(e, Error::StepAngleBeyondStability { step_angle, limit }
+    let e = refused(
+        &mut p,
+        GyroSample::new(Vec3::new(600.0, 0.0, 0.0)),
+        0.01,
+        |e| {
+            matches!(e, Error::StepAngleBeyondStability { step_angle, limit }
             if (*step_angle - 6.0).abs() < 1e-12 && (*limit - 4.0 * 2f64.sqrt()).abs() < 1e-9)
-    });
+        },
+    );
     seen.insert(variant(&e));
     // Baumgarte's gain: 4·k·h = 4 · 50 · 0.01 = 2 > RK4's 1.39.
-    let mut b = Propagator::new(Quat::<f64>::IDENTITY, Baumgarte::new(Rk4, 50.0).unwrap(), Hold, Off).unwrap();
-    let e = refused(&mut b, w, 0.01, |e| {
-        matches!(e, Error::GainBeyondStability { gain_step, .. } if (*gain_step - 2.0).abs() < 1e-12)
-    });
+    let mut b = Propagator::new(
+        Quat::<f64>::IDENTITY,
+        Baumgarte::new(Rk4, 50.0).unwrap(),
+        Hold,
+        Off,
+    )
+    .unwrap();
+    let e = refused(
+        &mut b,
+        w,
+        0.01,
+        |e| matches!(e, Error::GainBeyondStability { gain_step, .. } if (*gain_step - 2.0).abs() < 1e-12),
+    );
     seen.insert(variant(&e));
     b.push(w, 0.005).unwrap(); // 4 · 50 · 0.005 = 1: inside
 
@@ -349,18 +412,34 @@ fn every_error_variant_of_push_and_new_is_returned_for_its_input_with_the_state_
         assert!(steps <= 260, "never overflowed");
     };
     assert_eq!(e, Error::NonFiniteResult);
-    assert!((250..=257).contains(&steps), "overflowed after {steps} steps");
+    assert!(
+        (250..=257).contains(&steps),
+        "overflowed after {steps} steps"
+    );
     assert!(p.attitude().is_finite() && p.attitude().norm() > 1e37);
     seen.insert(variant(&e));
     // Refused again, identically: nothing moved.
-    assert_eq!(refused(&mut p, spin, 1.0, |e| *e == Error::NonFiniteResult), Error::NonFiniteResult);
+    assert_eq!(
+        refused(&mut p, spin, 1.0, |e| *e == Error::NonFiniteResult),
+        Error::NonFiniteResult
+    );
 
     // set_attitude: the same quaternion errors, the state kept.
-    let mut p = Propagator::new(Quat::<f64>::IDENTITY, ExpMap, DeltaAngles::new(TwoSample), Off).unwrap();
-    p.push(DeltaAngle::new(Vec3::new(0.01, 0.0, 0.0)), 0.01).unwrap(); // pending
+    let mut p = Propagator::new(
+        Quat::<f64>::IDENTITY,
+        ExpMap,
+        DeltaAngles::new(TwoSample),
+        Off,
+    )
+    .unwrap();
+    p.push(DeltaAngle::new(Vec3::new(0.01, 0.0, 0.0)), 0.01)
+        .unwrap(); // pending
     let before = p;
     assert_eq!(p.set_attitude(Quat::ZERO), Err(Error::ZeroQuaternion));
-    assert_eq!(p.set_attitude(Quat::new(0.0, f64::INFINITY, 0.0, 0.0)), Err(Error::NonFiniteQuaternion));
+    assert_eq!(
+        p.set_attitude(Quat::new(0.0, f64::INFINITY, 0.0, 0.0)),
+        Err(Error::NonFiniteQuaternion)
+    );
     assert_eq!(p, before);
 
     println!("{seen:?}");

@@ -131,11 +131,13 @@ fn per_step_norm_factor_of_every_scheme_matches_its_stability_polynomial() {
     assert!((closed_form_factor(SchemeKind::Euler, x) - (1.0 + x * x)).abs() < 1e-15);
     assert!((closed_form_factor(SchemeKind::Rk2, x) - (1.0 + x.powi(4) / 4.0)).abs() < 1e-15);
     assert!(
-        (closed_form_factor(SchemeKind::Rk3, x) - (1.0 - x.powi(4) / 12.0 + x.powi(6) / 36.0)).abs()
+        (closed_form_factor(SchemeKind::Rk3, x) - (1.0 - x.powi(4) / 12.0 + x.powi(6) / 36.0))
+            .abs()
             < 1e-15
     );
     assert!(
-        (closed_form_factor(SchemeKind::Rk4, x) - (1.0 - x.powi(6) / 72.0 + x.powi(8) / 576.0)).abs()
+        (closed_form_factor(SchemeKind::Rk4, x) - (1.0 - x.powi(6) / 72.0 + x.powi(8) / 576.0))
+            .abs()
             < 1e-15
     );
 }
@@ -218,7 +220,15 @@ fn closed_form_r(m: SchemeKind, z: f64) -> f64 {
         SchemeKind::Rk2 => &[1.0, 1.0, 0.5],
         SchemeKind::Rk3 => &[1.0, 1.0, 0.5, 1.0 / 6.0],
         SchemeKind::Rk4 => &[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0],
-        SchemeKind::Rk5 => &[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 600.0],
+        SchemeKind::Rk5 => &[
+            1.0,
+            1.0,
+            0.5,
+            1.0 / 6.0,
+            1.0 / 24.0,
+            1.0 / 120.0,
+            1.0 / 600.0,
+        ],
         _ => unreachable!(),
     };
     coeffs.iter().rev().fold(0.0, |acc, c| acc * z + c)
@@ -239,7 +249,10 @@ fn baumgarte_gain_bound_is_half_the_real_axis_interval_of_each_rk_scheme() {
         // Every t in (0, y] is stable, just beyond y is not.
         for i in 1..=1000 {
             let t = y * i as f64 / 1000.0;
-            assert!(closed_form_r(kind, -t).abs() <= 1.0 + 1e-12, "{kind:?} at {t}");
+            assert!(
+                closed_form_r(kind, -t).abs() <= 1.0 + 1e-12,
+                "{kind:?} at {t}"
+            );
         }
         assert!(closed_form_r(kind, -y * 1.001).abs() > 1.0, "{kind:?}");
     }
@@ -268,7 +281,11 @@ fn baumgarte_with_zero_gain_is_the_plain_scheme() {
             zero.push(w, 0.2).unwrap();
         }
         let d = (plain.attitude() - zero.attitude()).norm();
-        assert!(d <= 100.0 * 2.0 * 8.0 * f64::EPSILON, "{}: {d:e}", Scheme::<f64>::information(&s).name);
+        assert!(
+            d <= 100.0 * 2.0 * 8.0 * f64::EPSILON,
+            "{}: {d:e}",
+            Scheme::<f64>::information(&s).name
+        );
         // Not trivially equal because nothing moved: 20 rad of rotation.
         assert!(plain.attitude().angle_to(Quat::IDENTITY) > 0.1);
     }
