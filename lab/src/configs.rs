@@ -628,3 +628,103 @@ impl<T: LabReal> Integrator<T> for NalgebraAxisRun<T> {
         from_na(&self.q)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stream(rates_z: &[f64], dt: f64) -> Vec<Sample<f64>> {
+        rates_z
+            .iter()
+            .enumerate()
+            .map(|(k, &wz)| Sample {
+                w: Vec3::new(0.1, 0.0, wz),
+                // A sensor stream's first sample has no interval before it (dt = 0).
+                dt: if k == 0 { 0.0 } else { dt },
+            })
+            .collect()
+    }
+
+    fn run(c: Config, s: &[Sample<f64>]) -> (Quat<f64>, u64) {
+        let mut r = c.build::<f64>(Quat::IDENTITY, 0.1).unwrap();
+        // In two feeds, as the studies do between checkpoints.
+        r.feed(&s[..2]);
+        r.feed(&s[2..]);
+        (r.attitude(), r.refused().0)
+    }
+
+    fn by_hand<I: InputModel<f64, Sample = GyroSample<f64>>>(
+        input: I,
+        pushes: &[(f64, f64)],
+    ) -> Quat<f64> {
+        let mut p = Propagator::new(Quat::IDENTITY, Rk4, input, FirstOrder).unwrap();
+        for &(wz, dt) in pushes {
+            p.push(GyroSample::new(Vec3::new(0.1, 0.0, wz)), dt)
+                .unwrap();
+        }
+        p.attitude()
+    }
+
+    /// Each lab input is the library's model fed one push per sample; `Hold` skips the stream's first
+    /// sample (no interval before it), the others take it as their start whatever its dt.
+    #[test]
+    fn inputs_are_the_library_models_pushed_per_sample() {
+        let s = stream(&[0.5, 0.7, 0.6, 0.9, 1.2], 0.1);
+        let qp = |i| Config::qp(SchemeKind::Rk4, Stab::FirstOrder, i);
+        let all: Vec<(f64, f64)> = [0.5, 0.7, 0.6, 0.9, 1.2].map(|w| (w, 0.1)).to_vec();
+        assert_eq!(run(qp(Input::Hold), &s), (by_hand(Hold, &all[1..]), 0));
+        assert_eq!(
+            run(qp(Input::Linear), &s),
+            (by_hand(Linear::new(), &all), 0)
+        );
+        assert_eq!(
+            run(qp(Input::History), &s),
+            (by_hand(History::new(), &all), 0)
+        );
+        assert_eq!(
+            run(qp(Input::Mid), &s),
+            (by_hand(TwiceRate::new(), &all), 0)
+        );
+    }
+
+    /// A refused step is counted and its interval dropped; the stream continues from the refused sample
+    /// (the lab's policy since 0.1): with linear input, 100 rad/s at 0.1 s is beyond Rk4's 5.66 rad, so both
+    /// steps touching it are refused and the run equals one that restarts at the sample after it.
+    #[test]
+    fn a_refused_step_drops_its_interval_and_continues_from_that_sample() {
+        let s = stream(&[0.5, 0.7, 100.0, 0.9, 1.2], 0.1);
+        let c = Config::qp(SchemeKind::Rk4, Stab::FirstOrder, Input::Linear);
+        let expected = {
+            let mut p = Propagator::new(Quat::IDENTITY, Rk4, Linear::new(), FirstOrder).unwrap();
+            for (wz, restart) in [(0.5, false), (0.7, false), (0.9, true), (1.2, false)] {
+                if restart {
+                    p.restart_input();
+                }
+                p.push(GyroSample::new(Vec3::new(0.1, 0.0, wz)), 0.1)
+                    .unwrap();
+            }
+            p.attitude()
+        };
+        assert_eq!(run(c, &s), (expected, 2));
+        let mut r = c.build::<f64>(Quat::IDENTITY, 0.1).unwrap();
+        r.feed(&s);
+        assert!(matches!(
+            r.refused().1,
+            Some(Error::StepAngleBeyondStability { .. })
+        ));
+    }
+
+    /// Baumgarte exists for the Runge–Kutta schemes only.
+    #[test]
+    fn baumgarte_builds_for_runge_kutta_schemes_only() {
+        for m in SchemeKind::ALL {
+            let c = Config::qp(m, Stab::Baumgarte(0.5), Input::Linear);
+            assert_eq!(c.exists(), is_runge_kutta(m));
+            assert_eq!(
+                c.build::<f32>(Quat::IDENTITY, 1e-3).is_ok(),
+                c.exists(),
+                "{m:?}"
+            );
+        }
+    }
+}
