@@ -579,9 +579,10 @@ fn same_as_kind<S: Scheme<f32> + core::fmt::Debug>(
 /// The 0.1 regression seed (`properties.proptest-regressions`, a tiny subnormal start and a delta angle of
 /// 7.96 rad over dt = f32::MAX into Rk2 + Normalize), replayed on the 0.2 API for every scheme. The step angle
 /// is |φ| whatever dt, so the RK schemes whose bound is below 7.96 rad refuse it, unchanged. ExpMap applies φ
-/// itself and stays unit. Magnus4 and Cf4 read the rate φ/h at the Gauss nodes; with h = f32::MAX their
-/// arithmetic overflows (Magnus4: the commutator term scales a zero commutator by (h/2)² = ∞, giving NaN),
-/// and the propagator refuses the step with NonFiniteResult, unchanged: the contract, if not the ideal.
+/// itself and stays unit, and so does Cf4. Magnus4 reads the rate φ/h at the Gauss nodes and adds its
+/// commutator term scaled by (h/2)²/6, which overflows for h = f32::MAX: a zero commutator times ∞ is NaN,
+/// and the propagator refuses the step with NonFiniteResult, unchanged — the contract, if not the ideal
+/// (reported; a fix would let this test's `Ok` arm take Magnus4 too).
 #[test]
 fn regression_subnormal_start_and_huge_delta_over_f32_max() {
     let q0 = Quat::new(2.938736e-39_f32, 2.938736e-39, 2.938736e-39, 4.821033e-37);
