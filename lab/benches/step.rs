@@ -6,17 +6,10 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion};
 use quatprop::input::Linear;
-use quatprop::scheme::{Baumgarte, Euler, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind};
-use quatprop::stabilize::{Off, Stabilizer, StabilizerKind};
+use quatprop::scheme::{Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme};
+use quatprop::stabilize::{Every, FirstOrder, Normalize, Off, Stabilizer};
 use quatprop::{GyroSample, Propagator, Quat, Real, Vec3};
 use std::hint::black_box;
-
-const STABILIZERS: [(&str, StabilizerKind); 4] = [
-    ("Off", StabilizerKind::Off),
-    ("Normalize", StabilizerKind::Normalize),
-    ("FirstOrder", StabilizerKind::FirstOrder),
-    ("Every16", StabilizerKind::Every(16)),
-];
 
 fn bench_one<T: Real, S: Scheme<T>, Z: Stabilizer>(
     group: &mut BenchmarkGroup<'_, criterion::measurement::WallTime>,
@@ -41,21 +34,40 @@ fn bench_one<T: Real, S: Scheme<T>, Z: Stabilizer>(
 
 fn bench_precision<T: Real>(c: &mut Criterion, precision: &str) {
     let mut group = c.benchmark_group(format!("push_linear_{precision}"));
-    for m in SchemeKind::ALL {
-        for (name, z) in STABILIZERS {
-            bench_one::<T, _, _>(&mut group, format!("{m:?}/{name}"), m, z);
-        }
-        let k = T::from_f64(0.5);
-        let id = format!("{m:?}/Baumgarte");
-        match m {
-            SchemeKind::Euler => bench_one(&mut group, id, Baumgarte::new(Euler, k).unwrap(), Off),
-            SchemeKind::Rk2 => bench_one(&mut group, id, Baumgarte::new(Rk2, k).unwrap(), Off),
-            SchemeKind::Rk3 => bench_one(&mut group, id, Baumgarte::new(Rk3, k).unwrap(), Off),
-            SchemeKind::Rk4 => bench_one(&mut group, id, Baumgarte::new(Rk4, k).unwrap(), Off),
-            SchemeKind::Rk5 => bench_one(&mut group, id, Baumgarte::new(Rk5, k).unwrap(), Off),
-            SchemeKind::ExpMap | SchemeKind::Magnus4 | SchemeKind::Cf4 => {}
-        }
+    // Every configuration monomorphized (the types a firmware names), as in the lab's studies.
+    macro_rules! post_step {
+        ($name:literal, $s:expr) => {
+            bench_one::<T, _, _>(&mut group, concat!($name, "/Off").into(), $s, Off);
+            bench_one::<T, _, _>(
+                &mut group,
+                concat!($name, "/Normalize").into(),
+                $s,
+                Normalize,
+            );
+            bench_one::<T, _, _>(
+                &mut group,
+                concat!($name, "/FirstOrder").into(),
+                $s,
+                FirstOrder,
+            );
+            bench_one::<T, _, _>(&mut group, concat!($name, "/Every16").into(), $s, Every(16));
+        };
     }
+    macro_rules! rk {
+        ($name:literal, $s:expr) => {
+            post_step!($name, $s);
+            let b = Baumgarte::new($s, T::from_f64(0.5)).unwrap();
+            bench_one::<T, _, _>(&mut group, concat!($name, "/Baumgarte").into(), b, Off);
+        };
+    }
+    rk!("Euler", Euler);
+    rk!("Rk2", Rk2);
+    rk!("Rk3", Rk3);
+    rk!("Rk4", Rk4);
+    rk!("Rk5", Rk5);
+    post_step!("ExpMap", ExpMap);
+    post_step!("Magnus4", Magnus4);
+    post_step!("Cf4", Cf4);
     group.finish();
 }
 

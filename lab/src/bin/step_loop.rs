@@ -1,11 +1,14 @@
 //! `step-loop <scheme> <stabilizer> <f32|f64> <steps>`: pushes `steps` gyro samples into a propagator with
 //! the linear input model (one step per sample, the samples alternating between two rates); used by
 //! `lab/callgrind.sh` to count instructions per step (callgrind totals at N and 2N steps, differenced).
-//! Scheme and stabilizer are the library's run-time enums (`SchemeKind`, `StabilizerKind`); Baumgarte wraps a
-//! Runge–Kutta scheme (`scheme::Baumgarte`, stabilizer `Off`) and exits with status 3 for the others.
+//! Every configuration is monomorphized (the scheme and stabilizer types a firmware names, as in the lab's
+//! studies); Baumgarte wraps a Runge–Kutta scheme (`scheme::Baumgarte`, stabilizer `Off`) and exits with
+//! status 3 for the others.
 use quatprop::input::Linear;
-use quatprop::scheme::{Baumgarte, Euler, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind};
-use quatprop::stabilize::{Off, Stabilizer, StabilizerKind};
+use quatprop::scheme::{
+    Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
+};
+use quatprop::stabilize::{Every, FirstOrder, Normalize, Off, Stabilizer};
 use quatprop::{GyroSample, Propagator, Quat, Real, Vec3};
 use std::hint::black_box;
 
@@ -24,34 +27,48 @@ fn run<T: Real, S: Scheme<T>, Z: Stabilizer>(s: S, z: Z, steps: u64) {
     black_box(p.attitude());
 }
 
-const GAIN: &str = "k = 0.5 is a valid gain";
-
-fn stabilizer(s: &str) -> Option<StabilizerKind> {
-    Some(match s {
-        "Off" => StabilizerKind::Off,
-        "Normalize" => StabilizerKind::Normalize,
-        "FirstOrder" => StabilizerKind::FirstOrder,
-        "Every16" => StabilizerKind::Every(16),
-        _ => return None,
-    })
-}
-
+/// Every configuration monomorphized (the zero-sized types a firmware names), as in the lab's studies.
 fn run_in<T: Real>(m: SchemeKind, stab: &str, steps: u64) {
-    if stab == "Baumgarte" {
-        let k = T::from_f64(0.5);
-        match m {
-            SchemeKind::Euler => run::<T, _, _>(Baumgarte::new(Euler, k).expect(GAIN), Off, steps),
-            SchemeKind::Rk2 => run::<T, _, _>(Baumgarte::new(Rk2, k).expect(GAIN), Off, steps),
-            SchemeKind::Rk3 => run::<T, _, _>(Baumgarte::new(Rk3, k).expect(GAIN), Off, steps),
-            SchemeKind::Rk4 => run::<T, _, _>(Baumgarte::new(Rk4, k).expect(GAIN), Off, steps),
-            SchemeKind::Rk5 => run::<T, _, _>(Baumgarte::new(Rk5, k).expect(GAIN), Off, steps),
-            SchemeKind::ExpMap | SchemeKind::Magnus4 | SchemeKind::Cf4 => {
+    macro_rules! post_step {
+        ($s:expr) => {
+            match stab {
+                "Off" => run::<T, _, _>($s, Off, steps),
+                "Normalize" => run::<T, _, _>($s, Normalize, steps),
+                "FirstOrder" => run::<T, _, _>($s, FirstOrder, steps),
+                "Every16" => run::<T, _, _>($s, Every(16), steps),
+                _ => usage(),
+            }
+        };
+    }
+    macro_rules! rk {
+        ($s:expr) => {
+            if stab == "Baumgarte" {
+                let b = Baumgarte::new($s, T::from_f64(0.5)).expect("k = 0.5 is a valid gain");
+                run::<T, _, _>(b, Off, steps)
+            } else {
+                post_step!($s)
+            }
+        };
+    }
+    macro_rules! exp {
+        ($s:expr) => {
+            if stab == "Baumgarte" {
                 eprintln!("no such configuration: Baumgarte wraps the Runge-Kutta schemes only");
                 std::process::exit(3)
+            } else {
+                post_step!($s)
             }
-        }
-    } else {
-        run::<T, _, _>(m, stabilizer(stab).unwrap_or_else(|| usage()), steps)
+        };
+    }
+    match m {
+        SchemeKind::Euler => rk!(Euler),
+        SchemeKind::Rk2 => rk!(Rk2),
+        SchemeKind::Rk3 => rk!(Rk3),
+        SchemeKind::Rk4 => rk!(Rk4),
+        SchemeKind::Rk5 => rk!(Rk5),
+        SchemeKind::ExpMap => exp!(ExpMap),
+        SchemeKind::Magnus4 => exp!(Magnus4),
+        SchemeKind::Cf4 => exp!(Cf4),
     }
 }
 
