@@ -14,9 +14,6 @@ mod error;
 mod exact;
 pub mod frontend;
 mod gauss;
-#[cfg(feature = "embedded-hal")]
-#[cfg_attr(docsrs, doc(cfg(feature = "embedded-hal")))]
-pub mod gyro;
 pub mod input;
 mod interop;
 mod propagator;

@@ -237,8 +237,13 @@ fn sum_sq_minus_one_f32(w: f32, x: f32, y: f32, z: f32) -> f32 {
 }
 
 /// Each square as an exact pair `p + e = a²` (via `fma`), summed with Neumaier's compensation.
+/// A sum of squares that overflows is `+∞` (not the NaN that `∞ − ∞` in the compensation would give).
 #[inline]
 fn sum_sq_minus_one_f64(w: f64, x: f64, y: f64, z: f64) -> f64 {
+    let naive = w * w + x * x + y * y + z * z;
+    if !naive.is_finite() {
+        return naive;
+    }
     let mut sum = -1.0_f64;
     let mut comp = 0.0_f64;
     for a in [w, x, y, z] {
@@ -260,7 +265,6 @@ fn sum_sq_minus_one_f64(w: f64, x: f64, y: f64, z: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::sealed::Float;
-    use super::*;
 
     #[test]
     fn sum_sq_minus_one_resolves_below_epsilon() {
@@ -271,6 +275,9 @@ mod tests {
         // A naive sum would return 0 here: 1 + 2⁻⁶⁰ rounds to 1.
         let tiny = 2f64.powi(-30);
         assert_eq!(f64::sum_sq_minus_one(1.0, tiny, 0.0, 0.0), 2f64.powi(-60));
+        // Overflow of |q|² is +∞ in both precisions, never NaN.
+        assert_eq!(f64::sum_sq_minus_one(1e155, 0.0, 0.0, 0.0), f64::INFINITY);
+        assert_eq!(f32::sum_sq_minus_one(1e20, 0.0, 0.0, 0.0), f32::INFINITY);
         let t32 = 2f32.powi(-20);
         assert_eq!(f32::sum_sq_minus_one(1.0, t32, 0.0, 0.0), 2f32.powi(-40));
     }

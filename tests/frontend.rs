@@ -241,7 +241,7 @@ fn bias_estimator_learns_still_bias_and_nothing_else() {
     let sigma = 0.002; // rad/s per sample
     let mut noise = Noise(7);
     let mut est = BiasEstimator::<f64>::new(1000, gate).unwrap();
-    let mut sample = |extra: Vec3<f64>, noise: &mut Noise| {
+    let sample = |extra: Vec3<f64>, noise: &mut Noise| {
         GyroSample::new(bias + extra + Vec3::new(noise.next(), noise.next(), noise.next()) * sigma)
     };
     // Still for 20 s: the estimate's error is the noise averaged over the still time, σ/√N.
