@@ -70,7 +70,8 @@ fn main() -> ! {
     let Some(mut cp) = cortex_m::Peripherals::take() else {
         fail("peripherals")
     };
-    let Ok(mut p) = Propagator::new(Quat::<f32>::IDENTITY, ExpMap, History::new(), FirstOrder) else {
+    let Ok(mut p) = Propagator::new(Quat::<f32>::IDENTITY, ExpMap, History::new(), FirstOrder)
+    else {
         fail("propagator")
     };
     cp.SYST.set_clock_source(SystClkSource::Core);
@@ -128,10 +129,12 @@ fn main() -> ! {
         max_backlog,
         identical
     );
-    exit(overflows == 0
-        && out_of_order == 0
-        && refused == 0
-        && expected_index == ISR_STEPS + 1
-        && p.steps() == u64::from(ISR_STEPS)
-        && identical)
+    exit(
+        overflows == 0
+            && out_of_order == 0
+            && refused == 0
+            && expected_index == ISR_STEPS + 1
+            && p.steps() == u64::from(ISR_STEPS)
+            && identical,
+    )
 }

@@ -38,7 +38,12 @@ type S = scheme::Rk4;
 
 #[entry]
 fn main() -> ! {
-    let ok = match Propagator::new(Quat::<f32>::IDENTITY, S::default(), History::new(), FirstOrder) {
+    let ok = match Propagator::new(
+        Quat::<f32>::IDENTITY,
+        S::default(),
+        History::new(),
+        FirstOrder,
+    ) {
         Ok(mut p) => {
             let mut refused = false;
             // 1001 samples: the first only starts the history.

@@ -7,7 +7,8 @@
 //!
 //! Built, not run:
 //! `cargo build --release --target <triple> --no-default-features --features panic-never --bin nopanic`.
-//! For the micro:bit's 256 KB flash, add one `nopanic-<input>` feature per image (none: every input model).
+//! For the micro:bit's 256 KB flash, add one `nopanic-<input>` feature per image (none: every input model)
+//! and `nopanic-plain` or `nopanic-kahan` (neither: both accumulators).
 #![no_std]
 #![no_main]
 
@@ -24,6 +25,9 @@ use quatprop_firmware::configs::{each_scheme, Input, Label, Visitor};
 struct Exercise;
 
 impl Visitor for Exercise {
+    const PLAIN: bool = !cfg!(feature = "nopanic-kahan") || cfg!(feature = "nopanic-plain");
+    const KAHAN: bool = !cfg!(feature = "nopanic-plain") || cfg!(feature = "nopanic-kahan");
+
     fn visit<S, I, Z, A>(&mut self, scheme: S, input: I, stabilizer: Z, accumulator: A, _: Label)
     where
         S: Scheme<f32>,
@@ -66,6 +70,7 @@ const ALL: bool = !cfg!(any(
     feature = "nopanic-history",
     feature = "nopanic-twice-rate",
     feature = "nopanic-gauss-points",
+    feature = "nopanic-delta-two-sample",
     feature = "nopanic-delta-angles"
 ));
 
@@ -87,8 +92,10 @@ fn main() -> ! {
     if ALL || cfg!(feature = "nopanic-gauss-points") {
         each_scheme(v, GaussPoints::new());
     }
-    if ALL || cfg!(feature = "nopanic-delta-angles") {
+    if ALL || cfg!(feature = "nopanic-delta-two-sample") {
         each_scheme(v, DeltaAngles::new(TwoSample));
+    }
+    if ALL || cfg!(feature = "nopanic-delta-angles") {
         // Every coning correction's code, behind the run-time choice.
         each_scheme(v, DeltaAngles::new(black_box(ConingKind::FiveSample)));
     }

@@ -105,8 +105,14 @@ impl Worst {
 }
 
 impl Visitor for Worst {
-    fn visit<S, I, Z, A>(&mut self, scheme: S, input: I, stabilizer: Z, accumulator: A, label: Label)
-    where
+    fn visit<S, I, Z, A>(
+        &mut self,
+        scheme: S,
+        input: I,
+        stabilizer: Z,
+        accumulator: A,
+        label: Label,
+    ) where
         S: Scheme<f32>,
         I: Input,
         Z: Stabilizer,
