@@ -15,7 +15,7 @@ use quatprop::{GyroSample, Propagator, Quat, Vec3};
 pub const STEPS: u32 = 100_000;
 /// Steps per run on the soft-float boards (Cortex-M3 and M0), which emulate every float operation in
 /// software: the same runs, shorter, to keep CI's time (`firmware/expected/smoke-soft.txt`).
-pub const STEPS_SOFT: u32 = 50_000;
+pub const STEPS_SOFT: u32 = 20_000;
 /// Steps of the interrupt-driven run (`src/bin/isr.rs`).
 pub const ISR_STEPS: u32 = 2_000;
 /// Sample period (s): a 1 kHz gyro (TwiceRate: two samples of `DT / 2` per step).
