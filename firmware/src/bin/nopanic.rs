@@ -8,7 +8,8 @@
 //! Built, not run:
 //! `cargo build --release --target <triple> --no-default-features --features panic-never --bin nopanic`.
 //! For the micro:bit's 256 KB flash, add one `nopanic-<input>` feature per image (none: every input model)
-//! and `nopanic-plain` or `nopanic-kahan` (neither: both accumulators).
+//! and `nopanic-plain` or `nopanic-kahan` (neither: both accumulators). `nopanic-selftest` adds a reachable
+//! `unwrap()` on `None`: that image must fail to link.
 #![no_std]
 #![no_main]
 
@@ -98,6 +99,10 @@ fn main() -> ! {
     if ALL || cfg!(feature = "nopanic-delta-angles") {
         // Every coning correction's code, behind the run-time choice.
         each_scheme(v, DeltaAngles::new(black_box(ConingKind::FiveSample)));
+    }
+    if cfg!(feature = "nopanic-selftest") {
+        // A reachable panic: this image must NOT link (shows the proof can fail).
+        black_box(black_box(None::<u32>).unwrap());
     }
     loop {
         cortex_m::asm::wfi();
