@@ -4,11 +4,71 @@
 
 use crate::configs::scheme_name;
 use crate::plot::{plot, Axis, Series};
+use crate::table::{self, Csv, Table};
 use crate::unchecked::held_step;
 use crate::Ctx;
 use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::{Quat, Vec3};
-use std::fmt::Write as _;
+use serde::{Deserialize, Serialize};
+
+/// One step of one scheme at one step angle.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AtlasRow {
+    pub scheme: String,
+    pub step_angle_rad: f64,
+    pub norm_factor_minus_one: f64,
+    pub attitude_error_per_step_rad: f64,
+}
+impl Csv for AtlasRow {
+    const FILE: &'static str = "stability_atlas.csv";
+}
+
+/// The stability bound of one scheme: from the tableau and measured.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BoundRow {
+    pub scheme: String,
+    /// From the tableau (rad; infinite: none).
+    pub bound_from_tableau_rad: f64,
+    /// First H|ω| where the norm factor crosses its level (empty: never).
+    pub measured_rad: Option<f64>,
+}
+impl Csv for BoundRow {
+    const FILE: &'static str = "stability_bounds.csv";
+}
+impl Table for BoundRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "scheme",
+            "bound from the tableau (rad)",
+            "measured: first H\\|ω\\| where the norm factor crosses its level",
+            "agreement",
+        ]);
+        for r in rows {
+            let theory = r.bound_from_tableau_rad;
+            t += &format!(
+                "| {} | {} | {} | {} |\n",
+                r.scheme,
+                if theory.is_finite() {
+                    format!("{theory:.4}")
+                } else {
+                    "none".into()
+                },
+                r.measured_rad
+                    .map_or("never (norm factor ≤ 1 everywhere)".into(), |a| format!(
+                        "{a:.4}"
+                    )),
+                match (theory.is_finite(), r.measured_rad) {
+                    (true, Some(a)) => format!("{:+.2}%", 100.0 * (a / theory - 1.0)),
+                    (false, None) => "exact".into(),
+                    _ => "–".into(),
+                }
+            );
+        }
+        t
+    }
+}
 
 pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
     let n = if quick { 120 } else { 2000 };
@@ -18,10 +78,8 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
     let axis = Vec3::new(0.36, -0.48, 0.8);
     let mut norm_series = Vec::new();
     let mut err_series = Vec::new();
-    let mut csv = String::from("scheme,step_angle,norm_factor_minus_one,attitude_error_per_step\n");
-    let mut table = String::from(
-        "| scheme | bound from the tableau (rad) | measured: first H|ω| where the norm factor crosses its level | agreement |\n|---|---|---|---|\n",
-    );
+    let mut rows = Vec::new();
+    let mut bounds = Vec::new();
     for m in SchemeKind::ALL {
         let info = Scheme::<f64>::information(&m);
         let mut np = Vec::new();
@@ -37,36 +95,28 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
             let e = next.normalized().map_or(f64::NAN, |u| u.angle_to(exact));
             np.push((a, f.abs().max(1e-20)));
             ep.push((a, e.max(1e-20)));
-            let _ = writeln!(csv, "{},{a},{f},{e}", info.name);
+            rows.push(AtlasRow {
+                scheme: info.name.into(),
+                step_angle_rad: a,
+                norm_factor_minus_one: f,
+                attitude_error_per_step_rad: e,
+            });
             let level = if level_is_two { 1.0 } else { 0.0 };
             // 1e-12 stays clear of f64 rounding in the exact schemes' large-angle trigonometry.
             if crossed.is_none() && f > level + 1e-12 && a > 1e-3 {
                 crossed = Some(a);
             }
         }
-        let theory = info.step_angle_limit;
-        let _ = writeln!(
-            table,
-            "| {} | {} | {} | {} |",
-            info.name,
-            if theory.is_finite() {
-                format!("{theory:.4}")
-            } else {
-                "none".into()
-            },
-            crossed.map_or("never (norm factor ≤ 1 everywhere)".into(), |a| format!(
-                "{a:.4}"
-            )),
-            match (theory.is_finite(), crossed) {
-                (true, Some(a)) => format!("{:+.2}%", 100.0 * (a / theory - 1.0)),
-                (false, None) => "exact".into(),
-                _ => "–".into(),
-            }
-        );
+        bounds.push(BoundRow {
+            scheme: info.name.into(),
+            bound_from_tableau_rad: info.step_angle_limit,
+            measured_rad: crossed,
+        });
         norm_series.push(Series::line(scheme_name(m), np));
         err_series.push(Series::line(scheme_name(m), ep));
     }
-    ctx.csv("stability_atlas.csv", &csv);
+    ctx.rows(&rows);
+    let table = ctx.table(&bounds);
     ctx.plot(|dir| {
         plot(
             dir,

@@ -6,13 +6,91 @@
 //! (accept or `GainBeyondStability`) is recorded for every k.
 
 use crate::plot::{plot, Axis, Series};
+use crate::table::{self, Csv, Table};
 use crate::unchecked::held_step;
 use crate::Ctx;
 use quatprop::input::Hold;
 use quatprop::scheme::{Baumgarte, Euler, Rk2, Rk3, Rk4, Rk5, RungeKutta};
 use quatprop::stabilize::Off;
 use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
-use std::fmt::Write as _;
+use serde::{Deserialize, Serialize};
+
+/// |N| after the run, one scheme at one (H|ω|, k).
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CurveRow {
+    pub scheme: String,
+    pub h_omega: f64,
+    pub k: f64,
+    pub abs_n_after_steps: f64,
+}
+impl Csv for CurveRow {
+    const FILE: &'static str = "baumgarte_sweep.csv";
+}
+
+/// What one scheme at one H|ω| does as k grows, and what the propagator accepts.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SweepRow {
+    pub scheme: String,
+    pub h_omega: f64,
+    pub never_bounded: bool,
+    /// Bounded from this k on (empty: from the sweep's start).
+    pub bounded_from: Option<f64>,
+    pub oscillates_at: Option<f64>,
+    pub escapes_at: Option<f64>,
+    /// The propagator refuses above this k (infinite: never).
+    pub refuses_above: f64,
+    /// (first of oscillation, escape) / refusal.
+    pub trouble_over_refusal: Option<f64>,
+    /// Whether the propagator accepts below and refuses above (empty: the step angle itself is refused).
+    pub library_agrees: Option<bool>,
+}
+impl Csv for SweepRow {
+    const FILE: &'static str = "baumgarte_sweep_bounds.csv";
+}
+impl Table for SweepRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "scheme",
+            "H\\|ω\\|",
+            "bounded from k =",
+            "N stops settling (oscillates) at k =",
+            "escapes at k =",
+            "library refuses above k =",
+            "(first of oscillation, escape) / refusal",
+            "propagator accepts below, refuses above",
+        ]);
+        let f = |v: Option<f64>, none: &str| v.map_or(none.to_string(), |v| format!("{v:.4}"));
+        for r in rows {
+            t += &format!(
+                "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                r.scheme,
+                r.h_omega,
+                if r.never_bounded {
+                    "never bounded".to_string()
+                } else {
+                    f(r.bounded_from, "1e-4 (sweep start)")
+                },
+                f(r.oscillates_at, "–"),
+                f(r.escapes_at, "never (to 1e3)"),
+                if r.refuses_above.is_finite() {
+                    format!("{:.4}", r.refuses_above)
+                } else {
+                    "never".into()
+                },
+                r.trouble_over_refusal
+                    .map_or("–".to_string(), |m| format!("{m:.3}")),
+                match r.library_agrees {
+                    Some(true) => "yes",
+                    Some(false) => "**no**",
+                    None => "step angle refused (StepAngleBeyondStability)",
+                }
+            );
+        }
+        t
+    }
+}
 
 const W: Vec3<f64> = Vec3::new(0.0, 0.6, 0.8);
 
@@ -184,16 +262,18 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
         rows.push(sweep_scheme(ctx, "Rk4", Rk4, hw, &ks, steps));
         rows.push(sweep_scheme(ctx, "Rk5", Rk5, hw, &ks, steps));
     }
-    let mut csv = String::from("scheme,h_omega,k,abs_N_after_steps\n");
-    let mut table = String::from(
-        "| scheme | H|ω| | bounded from k = | N stops settling (oscillates) at k = | escapes at k = | library refuses above k = | (first of oscillation, escape) / refusal | propagator accepts below, refuses above |\n|---|---|---|---|---|---|---|---|\n",
-    );
+    let mut curve_rows = Vec::new();
+    let mut sweep_rows = Vec::new();
     let mut unsafe_rows = Vec::new();
     for r in &rows {
         for (k, n) in &r.curve {
-            let _ = writeln!(csv, "{},{},{k},{n}", r.name, r.hw);
+            curve_rows.push(CurveRow {
+                scheme: r.name.into(),
+                h_omega: r.hw,
+                k: *k,
+                abs_n_after_steps: *n,
+            });
         }
-        let f = |v: Option<f64>, none: &str| v.map_or(none.to_string(), |v| format!("{v:.4}"));
         // Unsafe: the propagator accepts a gain at which the run escapes or stops settling.
         let trouble = match (r.oscillates_at, r.escapes_at) {
             (Some(o), _) => Some(o),
@@ -204,33 +284,21 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
                 if e < r.refuses_above && r.library_agrees.is_some() {
                     unsafe_rows.push(format!("{} at H|ω| = {}", r.name, r.hw));
                 }
-                format!("{:.3}", e / r.refuses_above)
+                Some(e / r.refuses_above)
             }
-            _ => "–".into(),
+            _ => None,
         };
-        let _ = writeln!(
-            table,
-            "| {} | {} | {} | {} | {} | {} | {margin} | {} |",
-            r.name,
-            r.hw,
-            if r.never_bounded {
-                "never bounded".to_string()
-            } else {
-                f(r.bounded_from, "1e-4 (sweep start)")
-            },
-            f(r.oscillates_at, "–"),
-            f(r.escapes_at, "never (to 1e3)"),
-            if r.refuses_above.is_finite() {
-                format!("{:.4}", r.refuses_above)
-            } else {
-                "never".into()
-            },
-            match r.library_agrees {
-                Some(true) => "yes",
-                Some(false) => "**no**",
-                None => "step angle refused (StepAngleBeyondStability)",
-            }
-        );
+        sweep_rows.push(SweepRow {
+            scheme: r.name.into(),
+            h_omega: r.hw,
+            never_bounded: r.never_bounded,
+            bounded_from: r.bounded_from,
+            oscillates_at: r.oscillates_at,
+            escapes_at: r.escapes_at,
+            refuses_above: r.refuses_above,
+            trouble_over_refusal: margin,
+            library_agrees: r.library_agrees,
+        });
     }
     let verdict = if unsafe_rows.is_empty() {
         "In every row the propagation stays bounded and settles wherever the propagator accepts the gain.".to_string()
@@ -240,7 +308,8 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
             unsafe_rows.join(", ")
         )
     };
-    ctx.csv("baumgarte_sweep.csv", &csv);
+    ctx.rows(&curve_rows);
+    let table = ctx.table(&sweep_rows);
     let series: Vec<Series> = rows
         .iter()
         .filter(|r| r.hw == 0.1)
@@ -276,6 +345,6 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
          nonlinear term settles on N∞ ≠ 0, where its effective stiffness is 4k(1 + 2N∞). Ratio > 1: the refusal \
          comes first. Runge–Kutta schemes only: since quatprop 0.2 Baumgarte is a right-hand-side option of the \
          Runge–Kutta engine (`scheme::Baumgarte`), so the exponential map's rows (it integrated the radial term \
-         exactly and never diverged) are gone. CSV: `baumgarte_sweep.csv`.\n\n{table}\n{verdict}\n"
+         exactly and never diverged) are gone. CSV: `baumgarte_sweep.csv`, `baumgarte_sweep_bounds.csv`.\n\n{table}\n{verdict}\n"
     )
 }

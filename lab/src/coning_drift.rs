@@ -3,13 +3,61 @@
 //! for `mid`). Measured in f64 at α = 10⁻³ (α² regime) as the slope of the axial error between whole-period
 //! checkpoints; p from the λ dependence over λ = 0.05…0.2, c at λ = 0.05.
 
+use crate::table::{self, Csv, Table};
 use crate::Ctx;
 use quatprop::accumulate::Kahan;
 use quatprop::input::{History, InputModel, Linear, TwiceRate};
 use quatprop::scheme::SchemeKind;
 use quatprop::stabilize::Off;
 use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
-use std::fmt::Write as _;
+use serde::{Deserialize, Serialize};
+
+/// The measured drift of one scheme × input at one λ = Ωh.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DriftRow {
+    pub scheme: String,
+    pub input: String,
+    pub lambda: f64,
+    pub drift_rad_per_s: f64,
+}
+impl Csv for DriftRow {
+    const FILE: &'static str = "coning_drift.csv";
+}
+
+/// The fit of one scheme × input: drift = c·α²Ω·λ^p.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FitRow {
+    pub scheme: String,
+    pub input: String,
+    /// Fitted exponent over λ = 0.05…0.2.
+    pub exponent: f64,
+    /// The exponent rounded (the order the coefficient is given for).
+    pub exponent_rounded: f64,
+    /// c at λ = 0.05.
+    pub coefficient: f64,
+}
+impl Csv for FitRow {
+    const FILE: &'static str = "coning_drift_fit.csv";
+}
+impl Table for FitRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "scheme",
+            "input",
+            "exponent p (fit over λ = 0.05…0.2)",
+            "coefficient c at λ = 0.05 (drift = c·α²Ω·λ^p)",
+        ]);
+        for r in rows {
+            t += &format!(
+                "| {} | {} | {:.2} | {:+.3e} (p = {}) |\n",
+                r.scheme, r.input, r.exponent, r.coefficient, r.exponent_rounded
+            );
+        }
+        t
+    }
+}
 
 const ALPHA: f64 = 1e-3;
 const OMEGA: f64 = 2.0 * core::f64::consts::PI;
@@ -113,10 +161,8 @@ fn measure<I: InputModel<f64, Sample = GyroSample<f64>>>(
 pub fn coning_drift(ctx: &mut Ctx, quick: bool) -> String {
     let periods = if quick { 3 } else { 20 };
     let lambdas = [0.05, 0.1, 0.2];
-    let mut table = String::from(
-        "| scheme | input | exponent p (fit over λ = 0.05…0.2) | coefficient c at λ = 0.05 (drift = c·α²Ω·λ^p) |\n|---|---|---|---|\n",
-    );
-    let mut csv = String::from("scheme,input,lambda,drift_rad_per_s\n");
+    let mut rows = Vec::new();
+    let mut fits = Vec::new();
     for m in SchemeKind::ALL {
         for (input, name) in [
             (Input::Linear, "linear"),
@@ -135,15 +181,27 @@ pub fn coning_drift(ctx: &mut Ctx, quick: bool) -> String {
                 })
                 .collect();
             for (l, v) in lambdas.iter().zip(&d) {
-                let _ = writeln!(csv, "{:?},{name},{l},{v}", m);
+                rows.push(DriftRow {
+                    scheme: format!("{m:?}"),
+                    input: name.into(),
+                    lambda: *l,
+                    drift_rad_per_s: *v,
+                });
             }
             let p = (d[2].abs() / d[0].abs()).ln() / (lambdas[2] / lambdas[0]).ln();
             let pr = p.round();
             let c = d[0] / (ALPHA * ALPHA * OMEGA * lambdas[0].powf(pr));
-            let _ = writeln!(table, "| {m:?} | {name} | {p:.2} | {c:+.3e} (p = {pr}) |");
+            fits.push(FitRow {
+                scheme: format!("{m:?}"),
+                input: name.into(),
+                exponent: p,
+                exponent_rounded: pr,
+                coefficient: c,
+            });
         }
     }
-    ctx.csv("coning_drift.csv", &csv);
+    ctx.rows(&rows);
+    let table = ctx.table(&fits);
     format!(
         "### Coning drift of the rate schemes\n\nPure coning, α = 10⁻³ rad, Ω = 2π rad/s, f64 with a compensated state, \
          {periods} periods; the drift is the slope of the axial error between whole-period checkpoints. With \

@@ -1,13 +1,79 @@
 //! The seed paper's figures: N(t) under RK4 (Fig. 1) and the limit N∞ against the Baumgarte gain k (Fig. 2).
 
 use crate::plot::{plot, Axis, Series};
+use crate::table::{self, Csv, Table};
 use crate::unchecked::held_step;
 use crate::Ctx;
 use quatprop::input::Hold;
 use quatprop::scheme::{Baumgarte, Rk4};
 use quatprop::stabilize::{Normalize, Off};
 use quatprop::{GyroSample, Propagator, Quat, Vec3};
-use std::fmt::Write as _;
+use serde::{Deserialize, Serialize};
+
+/// Fig. 1: N after each step.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Fig1Row {
+    pub t_s: f64,
+    pub n_off: f64,
+    pub n_closed_form: f64,
+    pub n_baumgarte: f64,
+    pub n_normalize: f64,
+}
+impl Csv for Fig1Row {
+    const FILE: &'static str = "geiger_fig1.csv";
+}
+
+/// Fig. 2: N∞ at one (H|ω|, k).
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Fig2Row {
+    pub h_omega: f64,
+    pub k: f64,
+    /// The fixed point (NaN when none was found near 0).
+    pub n_inf: f64,
+    pub attracting: bool,
+}
+impl Csv for Fig2Row {
+    const FILE: &'static str = "geiger_fig2.csv";
+}
+
+/// Fig. 2's optimal gains per step angle.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GainRow {
+    pub h_omega: f64,
+    pub optimal_k1: Option<f64>,
+    pub optimal_k2: Option<f64>,
+    pub diverges_above_k: Option<f64>,
+    pub library_refuses_above_k: f64,
+}
+impl Csv for GainRow {
+    const FILE: &'static str = "geiger_fig2_gains.csv";
+}
+impl Table for GainRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "H\\|ω\\|",
+            "optimal k₁",
+            "optimal k₂",
+            "iteration diverges for k above",
+            "library refuses 4kH > 1.393 (half RK4's real-axis interval) above k =",
+        ]);
+        let fmt = |r: Option<f64>, d: usize| r.map_or("–".to_string(), |v| format!("{v:.d$}"));
+        for r in rows {
+            t += &format!(
+                "| {:.4} | {} | {} | {} | {:.4} |\n",
+                r.h_omega,
+                fmt(r.optimal_k1, 6),
+                fmt(r.optimal_k2, 6),
+                fmt(r.diverges_above_k, 3),
+                r.library_refuses_above_k
+            );
+        }
+        t
+    }
+}
 
 /// Fig. 1: constant rotation |ω| = 1 rad/s about z, 30 steps per period, 30 periods (the seed's setting);
 /// N(t) without stabilization, with Baumgarte k = 0.5, with normalization, and the closed form (1 − β)^j − 1.
@@ -21,7 +87,7 @@ pub fn figure1(ctx: &mut Ctx) -> String {
     let mut baum = Propagator::new(Quat::<f64>::IDENTITY, rk4_baumgarte, Hold, Off).unwrap();
     let mut norm = Propagator::new(Quat::<f64>::IDENTITY, Rk4, Hold, Normalize).unwrap();
     let (mut a, mut b, mut c, mut d) = (vec![], vec![], vec![], vec![]);
-    let mut csv = String::from("t,N_off,N_closed_form,N_baumgarte,N_normalize\n");
+    let mut rows = Vec::new();
     for j in 1..=steps {
         off.push(GyroSample::new(w), h).unwrap();
         baum.push(GyroSample::new(w), h).unwrap();
@@ -32,15 +98,15 @@ pub fn figure1(ctx: &mut Ctx) -> String {
         b.push((t, -closed));
         c.push((t, -baum.norm_error()));
         d.push((t, norm.norm_error().abs().max(1e-18)));
-        let _ = writeln!(
-            csv,
-            "{t},{},{closed},{},{}",
-            off.norm_error(),
-            baum.norm_error(),
-            norm.norm_error()
-        );
+        rows.push(Fig1Row {
+            t_s: t,
+            n_off: off.norm_error(),
+            n_closed_form: closed,
+            n_baumgarte: baum.norm_error(),
+            n_normalize: norm.norm_error(),
+        });
     }
-    ctx.csv("geiger_fig1.csv", &csv);
+    ctx.rows(&rows);
     ctx.plot(|dir| {
         plot(
             dir,
@@ -126,11 +192,11 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
         "### The seed's Fig. 2: N∞ against the Baumgarte gain k\n\n![N∞(k)](geiger_fig2.png)\n\n\
          Permanent rotation |ω| = 1 rad/s under RK4. N∞ is the fixed point of the per-step map N → F(N) (the seed's \
          eq. (9), evaluated as one unchecked step `q + increment` of the library's `Baumgarte(Rk4, k)`), found by Newton iteration; it is marked divergent \
-         where |F'(N∞)| ≥ 1. The optimal gains are the zeros of N∞(k), located by bisection on sign changes.\n\n\
-         | H|ω| | optimal k₁ | optimal k₂ | iteration diverges for k above | library refuses 4kH > 1.393 (half RK4's real-axis interval) above k = |\n|---|---|---|---|---|\n",
+         where |F'(N∞)| ≥ 1. The optimal gains are the zeros of N∞(k), located by bisection on sign changes.\n\n",
     );
     let mut series = Vec::new();
-    let mut csv = String::from("h_omega,k,n_inf,attracting\n");
+    let mut rows = Vec::new();
+    let mut gains = Vec::new();
     let points = if quick { 60 } else { 400 };
     for hw in [0.1, 0.2, 0.5, 2.0 * core::f64::consts::PI / 30.0] {
         let ks: Vec<f64> = (0..points)
@@ -145,7 +211,12 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
             match n_infinity(k, hw) {
                 Some((n, true)) => {
                     pts.push((k, n.abs().max(1e-20)));
-                    let _ = writeln!(csv, "{hw},{k},{n},1");
+                    rows.push(Fig2Row {
+                        h_omega: hw,
+                        k,
+                        n_inf: n,
+                        attracting: true,
+                    });
                     if let Some((k0, n0)) = prev {
                         if n0.signum() != n.signum() && n0 != 0.0 {
                             roots.push(bisect(k0, k, hw));
@@ -154,7 +225,12 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
                     prev = Some((k, n));
                 }
                 other => {
-                    let _ = writeln!(csv, "{hw},{k},{},0", other.map_or(f64::NAN, |o| o.0));
+                    rows.push(Fig2Row {
+                        h_omega: hw,
+                        k,
+                        n_inf: other.map_or(f64::NAN, |o| o.0),
+                        attracting: false,
+                    });
                     if diverge_at.is_none() && k > 1e-2 {
                         diverge_at = Some(k);
                     }
@@ -162,18 +238,18 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
                 }
             }
         }
-        let fmt = |r: Option<&f64>| r.map_or("–".to_string(), |v| format!("{v:.6}"));
-        let _ = writeln!(
-            out,
-            "| {hw:.4} | {} | {} | {} | {:.4} |",
-            fmt(roots.first()),
-            fmt(roots.get(1)),
-            diverge_at.map_or("–".to_string(), |k| format!("{k:.3}")),
-            Baumgarte::new(Rk4, 0.0).expect("k = 0").gain_step_limit() / (4.0 * hw)
-        );
+        gains.push(GainRow {
+            h_omega: hw,
+            optimal_k1: roots.first().copied(),
+            optimal_k2: roots.get(1).copied(),
+            diverges_above_k: diverge_at,
+            library_refuses_above_k: Baumgarte::new(Rk4, 0.0).expect("k = 0").gain_step_limit()
+                / (4.0 * hw),
+        });
         series.push(Series::line(format!("H|w| = {hw:.3}"), pts));
     }
-    ctx.csv("geiger_fig2.csv", &csv);
+    ctx.rows(&rows);
+    out += &ctx.table(&gains);
     ctx.plot(|dir| {
         plot(
             dir,

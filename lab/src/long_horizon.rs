@@ -1,145 +1,440 @@
-//! Long horizon: attitude error and |N| against the step count at 1 kHz: every scheme in f32 on a constant
-//! rate |ω| = 1 rad/s (H|ω| = 1e-3), and the exponential map with every post-step stabilizer in f32 and f64
-//! (and the compensated f32 state) on the constant rate and on coning through the sample history. (Baumgarte
-//! is, since quatprop 0.2, a right-hand-side option of the Runge–Kutta schemes only: no ExpMap row.)
-//! Default horizon 10⁸ steps (28 h of flight at 1 kHz), `--long` 10⁹, `--quick` 10⁶.
+//! Long horizon in f32: **own error** and **error against physical time**, separately, to 10⁸ steps at
+//! 1 kHz (28 h of flight; `--long` 10⁹, `--quick` 10⁶).
+//!
+//! Every f32 run has an f64 shadow: the same scheme, input model and stabilizer in f64 (Kahan-compensated,
+//! so its own round-off stays far below what is measured), fed **the same f32 samples and the same f32
+//! `dt`s** (their f64 values). The f32 run's *own error* is its angle to that shadow: what f32 arithmetic
+//! adds, nothing else. Its *error against physical time* is its angle to the exact motion at t = k·0.001 s
+//! (double-double reference, `crate::dd`), which also holds the samples' rounding, the time base and the
+//! scheme's truncation; the shadow's own error against physical time is printed beside it (the floor
+//! that no f32 arithmetic can go below).
+//!
+//! The `dt`s come from `frontend::FixedPeriod::<f32>::new(1e-3)` (exact time base; the error of
+//! dt = f32(0.001) is the time-base study's subject). Motions: a constant 1 rad/s about (0.36, −0.48, 0.80)
+//! (the reference is the exact rotation of the f32 sample's rate), and coning α = 0.3 rad at Ω = 2π/√2
+//! rad/s, a frequency incommensurate with the sample rate (a cone period that divides the sample rate
+//! repeats the same roundings every period and locks the error: numerics notes).
 
 use crate::configs::scheme_name;
+use crate::dd;
 use crate::plot::{plot, Axis, Series};
-use crate::scenes::{Coning, Scene as _};
+use crate::table::{self, cell, sci, Csv, Table};
 use crate::Ctx;
-use quatprop::accumulate::{Accumulator, Kahan};
-use quatprop::input::{History, Hold, InputModel};
+use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::frontend::FixedPeriod;
+use quatprop::input::{History, Hold, InputModel, Linear};
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
-use quatprop::stabilize::{Every, FirstOrder, Normalize, Off, Stabilizer};
+use quatprop::stabilize::{FirstOrder, Stabilizer, StabilizerKind};
 use quatprop::{GyroSample, Propagator, Quat, Real, Vec3};
-use std::fmt::Write as _;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
-const AXIS: Vec3<f64> = Vec3::new(0.36, -0.48, 0.80);
+const AXIS: Vec3<f64> = crate::time_base::AXIS;
+const ALPHA: f64 = 0.3;
 
-/// (steps, attitude error (rad), |N|) at each checkpoint.
-type Curve = Vec<(u64, f64, f64)>;
-
-/// Exact attitude after `k` steps of rate `w` (f64 from the f32 inputs), angle reduced modulo 4π.
-fn exact(w: Vec3<f64>, dt: f64, k: u64) -> Quat<f64> {
-    let angle = (w.norm() * dt * k as f64) % (4.0 * core::f64::consts::PI);
-    Quat::from_axis_angle(w, angle).unwrap_or(Quat::IDENTITY)
+/// The motion of a long run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// 1 rad/s about a skewed axis.
+    Constant,
+    /// Coning α = 0.3 rad at Ω = 2π/√2 rad/s (0.707 Hz).
+    Coning,
 }
 
+impl Motion {
+    pub fn name(self) -> &'static str {
+        match self {
+            Motion::Constant => "constant 1 rad/s",
+            Motion::Coning => "coning 0.3 rad, Ω = 2π/√2",
+        }
+    }
+    /// The body rate (rad/s) at sample k (physical time t = k·0.001 s).
+    fn rate(self, k: u64, phase: &dd::ConePhase) -> Vec3<f64> {
+        match self {
+            Motion::Constant => AXIS,
+            Motion::Coning => {
+                let o = 2.0 * core::f64::consts::PI / core::f64::consts::SQRT_2;
+                let (s, c) = phase.at(k).sin_cos();
+                let s2 = (0.5 * ALPHA).sin();
+                Vec3::new(
+                    -o * ALPHA.sin() * s,
+                    o * ALPHA.sin() * c,
+                    -2.0 * o * s2 * s2,
+                )
+            }
+        }
+    }
+    /// The exact attitude at sample k (`w32`: the constant rate's f32 sample).
+    fn attitude(self, k: u64, phase: &dd::ConePhase, w32: Vec3<f64>) -> Quat<f64> {
+        match self {
+            Motion::Constant => dd::constant_rate_attitude(w32, dd::time(k, 1000)),
+            Motion::Coning => {
+                let (s, c) = phase.at(k).sin_cos();
+                let (sa, ca) = (0.5 * ALPHA).sin_cos();
+                Quat::new(ca, sa * c, sa * s, 0.0)
+            }
+        }
+    }
+}
+
+/// The lab's accumulators (every one quatprop has: `accumulate::{Plain, Kahan}`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Acc {
+    Plain,
+    Kahan,
+}
+
+impl Acc {
+    pub const ALL: [Acc; 2] = [Acc::Plain, Acc::Kahan];
+    pub fn name(self) -> &'static str {
+        match self {
+            Acc::Plain => "Plain",
+            Acc::Kahan => "Kahan",
+        }
+    }
+}
+
+/// The input models of the study.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum In {
+    Hold,
+    Linear,
+    History,
+}
+
+impl In {
+    pub const ALL: [In; 3] = [In::Hold, In::Linear, In::History];
+    pub fn name(self) -> &'static str {
+        match self {
+            In::Hold => "Hold",
+            In::Linear => "Linear",
+            In::History => "History",
+        }
+    }
+}
+
+/// One f32 configuration and its f64 shadow.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Run {
+    pub group: &'static str,
+    pub motion: Motion,
+    pub scheme: SchemeKind,
+    pub stabilizer: StabilizerKind,
+    pub input: In,
+    pub acc: Acc,
+}
+
+/// A stabilizer's name with its parameter (`Every(16)`).
+fn stabilizer_name(z: StabilizerKind) -> String {
+    match z {
+        StabilizerKind::Every(n) => format!("Every({n})"),
+        other => other.name().into(),
+    }
+}
+
+impl Run {
+    pub fn label(&self) -> String {
+        format!(
+            "{} + {} + {} + {}",
+            scheme_name(self.scheme),
+            self.input.name(),
+            stabilizer_name(self.stabilizer),
+            self.acc.name()
+        )
+    }
+}
+
+/// One checkpoint of one run.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PointRow {
+    pub motion: String,
+    pub configuration: String,
+    pub steps: u64,
+    /// Angle between the f32 state and its f64 shadow (same f32 samples, same f32 dts) (rad).
+    pub own_error_rad: f64,
+    /// Angle between the f32 state and the exact motion at t = steps·0.001 s (rad).
+    pub physical_error_rad: f64,
+    /// Angle between the f64 shadow and the exact motion (rad): the floor of the samples and scheme.
+    pub f64_physical_error_rad: f64,
+    /// |N| = ||q|² − 1| of the f32 state.
+    pub abs_n: f64,
+}
+impl Csv for PointRow {
+    const FILE: &'static str = "long_horizon.csv";
+}
+
+/// The summary of one run: the last three decades and the growth exponents.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SummaryRow {
+    pub group: String,
+    pub motion: String,
+    pub configuration: String,
+    pub steps_end: u64,
+    pub own_error_at_end_over_100: f64,
+    pub own_error_at_end_over_10: f64,
+    pub own_error_at_end: f64,
+    /// Least-squares slope of log(own error) against log(steps) over the last two decades.
+    pub own_growth: f64,
+    pub physical_error_at_end_over_100: f64,
+    pub physical_error_at_end_over_10: f64,
+    pub physical_error_at_end: f64,
+    pub physical_growth: f64,
+    pub f64_physical_error_at_end: f64,
+    pub max_abs_n: f64,
+}
+impl Csv for SummaryRow {
+    const FILE: &'static str = "long_horizon_summary.csv";
+}
+impl Table for SummaryRow {
+    fn render(rows: &[Self]) -> String {
+        let n = rows.first().map_or(0, |r| r.steps_end) as f64;
+        let (a, b, c) = (
+            format!("{:.0e}", n / 100.0),
+            format!("{:.0e}", n / 10.0),
+            format!("{n:.0e}"),
+        );
+        let mut t = table::header(&[
+            "group",
+            "motion",
+            "f32 configuration",
+            &format!("own error {a}"),
+            &format!("own {b}"),
+            &format!("own {c}"),
+            "own growth",
+            &format!("physical-time error {a}"),
+            &format!("physical {b}"),
+            &format!("physical {c}"),
+            "physical growth",
+            &format!("f64 shadow, physical {c}"),
+            "max \\|N\\|",
+        ]);
+        for r in rows {
+            t += &format!(
+                "| {} | {} | {} | {} | {} | {} | {:.2} | {} | {} | {} | {:.2} | {} | {} |\n",
+                r.group,
+                cell(&r.motion),
+                cell(&r.configuration),
+                sci(r.own_error_at_end_over_100, 2),
+                sci(r.own_error_at_end_over_10, 2),
+                sci(r.own_error_at_end, 2),
+                r.own_growth,
+                sci(r.physical_error_at_end_over_100, 2),
+                sci(r.physical_error_at_end_over_10, 2),
+                sci(r.physical_error_at_end, 2),
+                r.physical_growth,
+                sci(r.f64_physical_error_at_end, 2),
+                sci(r.max_abs_n, 1),
+            );
+        }
+        t
+    }
+}
+
+/// Checkpoints every half decade from 10³ to `total`.
 fn checkpoints(total: u64) -> Vec<u64> {
     let mut v = Vec::new();
     let mut c = 1000f64;
-    while (c as u64) < total {
-        v.push(c as u64);
+    while (c.round() as u64) < total {
+        v.push(c.round() as u64);
         c *= 10f64.sqrt();
     }
     v.push(total);
     v
 }
 
-/// The motion of a long run: a constant rate (held samples), or coning α = 0.3 rad at 1 Hz fed through the
-/// fourth-order sample history (its truncation, 2.3e-11 rad/s at 1 kHz, stays below f32 round-off).
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Motion {
-    Constant,
-    Coning,
+fn angle(a: Quat<f64>, b: Quat<f64>) -> f64 {
+    match (a.normalized(), b.normalized()) {
+        (Some(a), Some(b)) => a.angle_to(b),
+        _ => f64::NAN,
+    }
 }
 
-/// A run from the identity with scheme `s` and stabilizer `z`: held samples ([`Hold`]) on the constant rate,
-/// the sample history ([`History`]) on coning; increments added plainly or compensated ([`Kahan`]).
-fn run_motion<T: Real, S: Scheme<T>, Z: Stabilizer>(
-    ctx: &mut Ctx,
+/// The input models as the library's types.
+trait LongInput<T: Real>: InputModel<T, Sample = GyroSample<T>> {
+    fn fresh() -> Self;
+    /// [`Hold`] steps on every push: the first sample (t = 0) has no interval before it and is not pushed.
+    const SKIP_FIRST: bool;
+}
+impl<T: Real> LongInput<T> for Hold {
+    fn fresh() -> Self {
+        Hold
+    }
+    const SKIP_FIRST: bool = true;
+}
+impl<T: Real> LongInput<T> for Linear<T> {
+    fn fresh() -> Self {
+        Linear::new()
+    }
+    const SKIP_FIRST: bool = false;
+}
+impl<T: Real> LongInput<T> for History<T> {
+    fn fresh() -> Self {
+        History::new()
+    }
+    const SKIP_FIRST: bool = false;
+}
+
+/// The f32 run and its shadow in lock step; one point per checkpoint.
+fn pair<S, Z, I32, I64, A>(
+    r: &Run,
     s: S,
     z: Z,
-    compensated: bool,
+    acc: A,
     total: u64,
-    motion: Motion,
-) -> Curve {
-    let q0 = Quat::<T>::IDENTITY;
-    match (motion, compensated) {
-        (Motion::Constant, false) => {
-            run(ctx, Propagator::new(q0, s, Hold, z).unwrap(), total, motion)
-        }
-        (Motion::Constant, true) => {
-            let p = Propagator::new(q0, s, Hold, z).unwrap();
-            run(ctx, p.with_accumulator(Kahan::new()), total, motion)
-        }
-        (Motion::Coning, false) => {
-            let p = Propagator::new(q0, s, History::new(), z).unwrap();
-            run(ctx, p, total, motion)
-        }
-        (Motion::Coning, true) => {
-            let p = Propagator::new(q0, s, History::new(), z).unwrap();
-            run(ctx, p.with_accumulator(Kahan::new()), total, motion)
-        }
-    }
-}
-
-fn run<T, S, I, Z, A>(
-    ctx: &mut Ctx,
-    mut p: Propagator<T, S, I, Z, A>,
-    total: u64,
-    motion: Motion,
-) -> Curve
+    bar: &indicatif::ProgressBar,
+) -> Vec<PointRow>
 where
-    T: Real,
-    S: Scheme<T>,
-    I: InputModel<T, Sample = GyroSample<T>>,
+    S: Scheme<f32> + Scheme<f64>,
     Z: Stabilizer,
-    A: Accumulator<T>,
+    I32: LongInput<f32>,
+    I64: LongInput<f64>,
+    A: Accumulator<f32>,
 {
-    let w = Vec3::<T>::from_f64(AXIS);
-    let dt = T::from_f64(1e-3);
-    let (w64, dt64) = (w.to_f64(), dt.to_f64());
-    if motion == Motion::Coning {
-        let _ = p.set_attitude(Quat::<T>::from_f64(Coning.attitude(0.0)));
-        // The first sample only starts the history.
-        let _ = p.push(GyroSample::new(Vec3::<T>::from_f64(Coning.rate(0.0))), dt);
+    let motion = r.motion;
+    let phase = dd::ConePhase::over_sqrt2(1000);
+    let q0 = motion.attitude(0, &phase, Vec3::<f32>::from_f64(AXIS).to_f64());
+    let mut p32 = Propagator::new(Quat::<f32>::from_f64(q0), s, I32::fresh(), z)
+        .expect("valid configuration")
+        .with_accumulator(acc);
+    let q0_32 = p32.attitude().to_f64();
+    // The shadow starts where the f32 state starts (its rounded q0), so only the steps differ.
+    let mut p64 = Propagator::new(q0_32, s, I64::fresh(), z)
+        .expect("valid configuration")
+        .with_accumulator(Kahan::new());
+    let mut period = FixedPeriod::<f32>::new(1e-3).expect("valid period");
+    let w_of = |k: u64| Vec3::<f32>::from_f64(motion.rate(k, &phase));
+    if !I32::SKIP_FIRST {
+        let w = w_of(0);
+        // Only starts the models (the dt of a start is not used).
+        let _ = p32.push(GyroSample::new(w), 1e-3);
+        let _ = p64.push(GyroSample::new(w.to_f64()), 1e-3);
     }
+    let w32_const = w_of(0).to_f64();
     let mut out = Vec::new();
     let mut k = 0u64;
+    let label = r.label();
     for c in checkpoints(total) {
-        match motion {
-            Motion::Constant => {
-                while k < c {
-                    let _ = p.push(GyroSample::new(w), dt);
-                    k += 1;
-                    if k.is_multiple_of(1_000_000) {
-                        ctx.tick();
-                    }
-                }
-            }
-            Motion::Coning => {
-                while k < c {
-                    k += 1;
-                    let wk = Vec3::<T>::from_f64(Coning.rate(k as f64 * dt64));
-                    let _ = p.push(GyroSample::new(wk), dt);
-                    if k.is_multiple_of(1_000_000) {
-                        ctx.tick();
-                    }
-                }
+        while k < c {
+            k += 1;
+            let w = w_of(k);
+            let dt = period.next_dt();
+            let _ = p32.push(GyroSample::new(w), dt);
+            let _ = p64.push(GyroSample::new(w.to_f64()), dt as f64);
+            if k % 1_000_000 == 0 {
+                bar.inc(1);
             }
         }
-        let exact = match motion {
-            Motion::Constant => exact(w64, dt64, k),
-            Motion::Coning => Coning.attitude(k as f64 * dt64),
-        };
-        let q = p.attitude().to_f64();
-        let err = q.normalized().map_or(f64::NAN, |u| u.angle_to(exact));
-        out.push((k, err, p.norm_error().to_f64().abs()));
+        let exact = motion.attitude(k, &phase, w32_const);
+        let (q32, q64) = (p32.attitude().to_f64(), p64.attitude());
+        out.push(PointRow {
+            motion: motion.name().into(),
+            configuration: label.clone(),
+            steps: k,
+            own_error_rad: angle(q32, q64),
+            physical_error_rad: angle(q32, exact),
+            f64_physical_error_rad: angle(q64, exact),
+            abs_n: p32.norm_error().abs() as f64,
+        });
     }
     out
 }
 
-/// Least-squares slope of log(err) against log(steps) over the last three decades.
-fn slope(points: &[(u64, f64, f64)]) -> f64 {
+/// Dispatches a run to its monomorphized types.
+fn run_one(r: &Run, total: u64, bar: &indicatif::ProgressBar) -> Vec<PointRow> {
+    macro_rules! with_input {
+        ($s:expr, $z:expr, $a:expr) => {
+            match r.input {
+                In::Hold => pair::<_, _, Hold, Hold, _>(r, $s, $z, $a, total, bar),
+                In::Linear => pair::<_, _, Linear<f32>, Linear<f64>, _>(r, $s, $z, $a, total, bar),
+                In::History => {
+                    pair::<_, _, History<f32>, History<f64>, _>(r, $s, $z, $a, total, bar)
+                }
+            }
+        };
+    }
+    macro_rules! with_acc {
+        ($s:expr, $z:expr) => {
+            match r.acc {
+                Acc::Plain => with_input!($s, $z, Plain),
+                Acc::Kahan => with_input!($s, $z, Kahan::new()),
+            }
+        };
+    }
+    // The exponential map with FirstOrder (the matrix) monomorphized; other rows through the runtime enums.
+    if r.scheme == SchemeKind::ExpMap && r.stabilizer == StabilizerKind::FirstOrder {
+        with_acc!(ExpMap, FirstOrder)
+    } else {
+        with_acc!(r.scheme, r.stabilizer)
+    }
+}
+
+/// The runs: the accumulator × input matrix (ExpMap + FirstOrder) on both motions, every scheme on the
+/// constant rate, every other post-step stabilizer on both motions.
+pub fn runs() -> Vec<Run> {
+    let mut v = Vec::new();
+    for motion in [Motion::Constant, Motion::Coning] {
+        for acc in Acc::ALL {
+            for input in In::ALL {
+                v.push(Run {
+                    group: "accumulator × input",
+                    motion,
+                    scheme: SchemeKind::ExpMap,
+                    stabilizer: StabilizerKind::FirstOrder,
+                    input,
+                    acc,
+                });
+            }
+        }
+    }
+    for scheme in SchemeKind::ALL {
+        if scheme != SchemeKind::ExpMap {
+            v.push(Run {
+                group: "scheme",
+                motion: Motion::Constant,
+                scheme,
+                stabilizer: StabilizerKind::FirstOrder,
+                input: In::Hold,
+                acc: Acc::Plain,
+            });
+        }
+    }
+    for motion in [Motion::Constant, Motion::Coning] {
+        for stabilizer in [
+            StabilizerKind::Off,
+            StabilizerKind::Normalize,
+            StabilizerKind::Every(16),
+        ] {
+            v.push(Run {
+                group: "stabilizer",
+                motion,
+                scheme: SchemeKind::ExpMap,
+                stabilizer,
+                input: if motion == Motion::Coning {
+                    In::History
+                } else {
+                    In::Hold
+                },
+                acc: Acc::Plain,
+            });
+        }
+    }
+    v
+}
+
+/// Least-squares slope of log(err) against log(steps) over the last two decades.
+fn slope(points: &[(u64, f64)]) -> f64 {
     let last = points.last().map_or(1, |p| p.0) as f64;
     let sel: Vec<(f64, f64)> = points
         .iter()
-        .filter(|p| (p.0 as f64) >= last / 1000.0 && p.1 > 0.0)
+        .filter(|p| (p.0 as f64) >= last / 100.0 * 0.999 && p.1 > 0.0 && p.1.is_finite())
         .map(|p| ((p.0 as f64).ln(), p.1.ln()))
         .collect();
     let n = sel.len() as f64;
+    if n < 2.0 {
+        return f64::NAN;
+    }
     let (mx, my) = (
         sel.iter().map(|p| p.0).sum::<f64>() / n,
         sel.iter().map(|p| p.1).sum::<f64>() / n,
@@ -149,143 +444,239 @@ fn slope(points: &[(u64, f64, f64)]) -> f64 {
     sxy / sxx
 }
 
-/// Every post-step stabilizer with the exponential map, f32 and f64, and the compensated f32 state.
-fn stabilizer_rows(ctx: &mut Ctx, total: u64, motion: Motion, rows: &mut Vec<(String, Curve)>) {
-    let tag = match motion {
-        Motion::Constant => "constant",
-        Motion::Coning => "coning",
-    };
-    macro_rules! both {
-        ($z:expr, $zname:expr) => {{
-            rows.push((
-                format!("{tag}: ExpMap + {} f32", $zname),
-                run_motion::<f32, _, _>(ctx, ExpMap, $z, false, total, motion),
-            ));
-            rows.push((
-                format!("{tag}: ExpMap + {} f64", $zname),
-                run_motion::<f64, _, _>(ctx, ExpMap, $z, false, total, motion),
-            ));
-        }};
+fn summary(r: &Run, pts: &[PointRow]) -> SummaryRow {
+    let end = pts.last().map_or(0, |p| p.steps);
+    let at =
+        |k: u64, f: fn(&PointRow) -> f64| pts.iter().find(|p| p.steps == k).map_or(f64::NAN, f);
+    let own: Vec<(u64, f64)> = pts.iter().map(|p| (p.steps, p.own_error_rad)).collect();
+    let phys: Vec<(u64, f64)> = pts
+        .iter()
+        .map(|p| (p.steps, p.physical_error_rad))
+        .collect();
+    SummaryRow {
+        group: r.group.into(),
+        motion: r.motion.name().into(),
+        configuration: r.label(),
+        steps_end: end,
+        own_error_at_end_over_100: at(end / 100, |p| p.own_error_rad),
+        own_error_at_end_over_10: at(end / 10, |p| p.own_error_rad),
+        own_error_at_end: at(end, |p| p.own_error_rad),
+        own_growth: slope(&own),
+        physical_error_at_end_over_100: at(end / 100, |p| p.physical_error_rad),
+        physical_error_at_end_over_10: at(end / 10, |p| p.physical_error_rad),
+        physical_error_at_end: at(end, |p| p.physical_error_rad),
+        physical_growth: slope(&phys),
+        f64_physical_error_at_end: at(end, |p| p.f64_physical_error_rad),
+        max_abs_n: pts.iter().map(|p| p.abs_n).fold(0.0, f64::max),
     }
-    both!(Off, "Off");
-    both!(Normalize, "Normalize");
-    both!(FirstOrder, "FirstOrder");
-    both!(Every(16), "Every(16)");
-    rows.push((
-        format!("{tag}: ExpMap + FirstOrder f32 compensated"),
-        run_motion::<f32, _, _>(ctx, ExpMap, FirstOrder, true, total, motion),
-    ));
 }
 
 pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
-    let mut rows: Vec<(String, Curve)> = Vec::new();
-    for m in SchemeKind::ALL {
-        rows.push((
-            format!("constant: {} + FirstOrder f32", scheme_name(m)),
-            run_motion::<f32, _, _>(ctx, m, FirstOrder, false, total, Motion::Constant),
-        ));
-    }
-    stabilizer_rows(ctx, total, Motion::Constant, &mut rows);
-    let constant_rows = rows.len();
-    stabilizer_rows(ctx, total, Motion::Coning, &mut rows);
-    let mut csv = String::from("configuration,steps,attitude_error_rad,abs_N\n");
-    let mut table = format!(
-        "| configuration | attitude error after {total:.0e} steps (rad) | max \\|N\\| at checkpoints | growth exponent (last 3 decades) |\n|---|---|---|---|\n"
-    );
-    for (name, pts) in &rows {
-        for (k, e, n) in pts {
-            let _ = writeln!(csv, "{name},{k},{e},{n}");
-        }
-        let last = pts.last().copied().unwrap_or((0, f64::NAN, f64::NAN));
-        let maxn = pts.iter().map(|p| p.2).fold(0.0, f64::max);
-        let _ = writeln!(
-            table,
-            "| {name} | {:.2e} | {:.1e} | {:.2} |",
-            last.1,
-            maxn,
-            slope(pts)
-        );
-    }
-    ctx.csv("long_horizon.csv", &csv);
-    let error_series = |sel: &[(String, Curve)]| -> Vec<Series> {
-        sel.iter()
-            .map(|(name, pts)| {
-                Series::both(
-                    name.clone(),
-                    pts.iter().map(|p| (p.0 as f64, p.1.max(1e-16))).collect(),
-                )
-            })
-            .collect()
-    };
-    // The drift plot: every scheme in f32, the compensated f32 state and f64 (ExpMap, FirstOrder).
-    let mut drift: Vec<(String, Curve)> = rows[..SchemeKind::ALL.len()].to_vec();
-    drift.extend(
-        rows.iter()
-            .filter(|r| {
-                r.0 == "constant: ExpMap + FirstOrder f64"
-                    || r.0 == "constant: ExpMap + FirstOrder f32 compensated"
-            })
-            .cloned(),
-    );
+    let runs = runs();
+    let bar = ctx.progress();
+    // Accuracy runs: independent, in parallel (rayon); nothing here is timed.
+    let curves: Vec<Vec<PointRow>> = runs.par_iter().map(|r| run_one(r, total, &bar)).collect();
+    let points: Vec<PointRow> = curves.iter().flatten().cloned().collect();
+    ctx.rows(&points);
+    let summaries: Vec<SummaryRow> = runs
+        .iter()
+        .zip(&curves)
+        .map(|(r, c)| summary(r, c))
+        .collect();
+    let table = ctx.table(&summaries);
+    let series =
+        |sel: &dyn Fn(&Run) -> bool, f: fn(&PointRow) -> f64, name: &dyn Fn(&Run) -> String| {
+            runs.iter()
+                .zip(&curves)
+                .filter(|(r, _)| sel(r))
+                .map(|(r, c)| {
+                    Series::both(
+                        name(r),
+                        c.iter()
+                            .map(|p| (p.steps as f64, f(p).max(1e-16)))
+                            .collect(),
+                    )
+                })
+                .collect::<Vec<_>>()
+        };
+    let matrix = |m: Motion| move |r: &Run| r.group == "accumulator × input" && r.motion == m;
+    let io_name = |r: &Run| format!("{} + {}", r.input.name(), r.acc.name());
     let steps_axis = Axis {
-        label: "steps",
+        label: "steps (1 kHz)",
         log: true,
     };
-    let err_axis = Axis {
-        label: "attitude error (rad)",
-        log: true,
-    };
-    let plots: [(&str, String, Vec<Series>); 4] = [
+    let err_axis = |label| Axis { label, log: true };
+    let mut physical = series(
+        &|r| {
+            r.group == "accumulator × input" && r.motion == Motion::Coning && r.input == In::History
+        },
+        |p| p.physical_error_rad,
+        &|r| format!("f32 {}: against physical time", r.acc.name()),
+    );
+    physical.extend(series(
+        &|r| {
+            r.group == "accumulator × input" && r.motion == Motion::Coning && r.input == In::History
+        },
+        |p| p.own_error_rad,
+        &|r| format!("f32 {}: own error", r.acc.name()),
+    ));
+    physical.extend(
+        series(
+            &|r| {
+                r.group == "accumulator × input"
+                    && r.motion == Motion::Coning
+                    && r.input == In::History
+                    && r.acc == Acc::Plain
+            },
+            |p| p.f64_physical_error_rad,
+            &|_| "f64 shadow (same f32 samples): against physical time".into(),
+        )
+        .into_iter()
+        .map(Series::dashed),
+    );
+    let mut schemes = series(&|r| r.group == "scheme", |p| p.own_error_rad, &|r| {
+        scheme_name(r.scheme).into()
+    });
+    schemes.extend(series(
+        &|r| {
+            r.group == "accumulator × input"
+                && r.motion == Motion::Constant
+                && r.input == In::Hold
+                && r.acc == Acc::Plain
+        },
+        |p| p.own_error_rad,
+        &|r| scheme_name(r.scheme).into(),
+    ));
+    let norm = series(
+        &|r| {
+            r.motion == Motion::Coning
+                && (r.group == "stabilizer"
+                    || (r.group == "accumulator × input"
+                        && r.input == In::History
+                        && r.acc == Acc::Plain))
+        },
+        |p| p.abs_n.max(1e-18),
+        &|r| stabilizer_name(r.stabilizer),
+    );
+    let plots: [(&str, &str, Axis, Vec<Series>); 5] = [
+        (
+            "long_horizon_own_constant",
+            "Constant 1 rad/s, f32 ExpMap + FirstOrder: own error per input and accumulator",
+            err_axis("own error: angle to the f64 shadow (rad)"),
+            series(&matrix(Motion::Constant), |p| p.own_error_rad, &io_name),
+        ),
+        (
+            "long_horizon_own_coning",
+            "Coning at Ω = 2π/√2, f32 ExpMap + FirstOrder: own error per input and accumulator",
+            err_axis("own error: angle to the f64 shadow (rad)"),
+            series(&matrix(Motion::Coning), |p| p.own_error_rad, &io_name),
+        ),
+        (
+            "long_horizon_physical",
+            "Coning, History: own error and error against physical time are different numbers",
+            err_axis("attitude error (rad)"),
+            physical,
+        ),
         (
             "long_horizon",
-            "Constant rate 1 rad/s at 1 kHz: attitude error against step count".into(),
-            error_series(&drift),
-        ),
-        (
-            "long_horizon_stabilizers_constant",
-            "Constant rate, ExpMap: every post-step stabilizer, f32 and f64".into(),
-            error_series(&rows[SchemeKind::ALL.len()..constant_rows]),
-        ),
-        (
-            "long_horizon_stabilizers_coning",
-            "Coning at 1 kHz (sample history), ExpMap: every post-step stabilizer, f32 and f64"
-                .into(),
-            error_series(&rows[constant_rows..]),
+            "Constant 1 rad/s, f32, Hold + FirstOrder + Plain: own error of every scheme",
+            err_axis("own error: angle to the f64 shadow (rad)"),
+            schemes,
         ),
         (
             "long_horizon_norm",
-            "Coning at 1 kHz: |N| = ||q|^2 - 1| against step count".into(),
-            rows[constant_rows..]
-                .iter()
-                .map(|(name, pts)| {
-                    Series::both(
-                        name.clone(),
-                        pts.iter().map(|p| (p.0 as f64, p.2.max(1e-18))).collect(),
-                    )
-                })
-                .collect(),
+            "Coning, f32 ExpMap: |N| = ||q|² − 1| per post-step stabilizer",
+            err_axis("|N| (dimensionless)"),
+            norm,
         ),
     ];
-    for (name, title, series) in plots {
-        let y = if name == "long_horizon_norm" {
-            Axis {
-                label: "|N|",
-                log: true,
-            }
-        } else {
-            err_axis
-        };
-        ctx.plot(|dir| plot(dir, name, &title, steps_axis, y, &series));
+    for (name, title, y, s) in plots {
+        ctx.plot(|dir| plot(dir, name, title, steps_axis, y, &s));
+    }
+    let find = |m: Motion, i: In, a: Acc| {
+        summaries
+            .iter()
+            .zip(&runs)
+            .find(|(_, r)| {
+                r.group == "accumulator × input" && r.motion == m && r.input == i && r.acc == a
+            })
+            .map(|(s, _)| s.clone())
+    };
+    let mut headline = String::new();
+    if let (Some(p), Some(k)) = (
+        find(Motion::Coning, In::History, Acc::Plain),
+        find(Motion::Coning, In::History, Acc::Kahan),
+    ) {
+        headline = format!(
+            "On incommensurate coning with the sample history after {total:.0e} steps, plain f32 is {:.2e} rad from its \
+             f64 shadow (growth exponent {:.2}) and {:.2e} rad from the physical motion; Kahan's own error is \
+             {:.2e} rad (exponent {:.2}), its physical-time error {:.2e} rad, against the shadow's own floor of \
+             {:.2e} rad. ",
+            p.own_error_at_end,
+            p.own_growth,
+            p.physical_error_at_end,
+            k.own_error_at_end,
+            k.own_growth,
+            k.physical_error_at_end,
+            k.f64_physical_error_at_end
+        );
     }
     format!(
-        "### Long horizon: error growth in f32 and f64\n\n![long horizon](long_horizon.png)\n\n\
-         ![stabilizers, constant rate](long_horizon_stabilizers_constant.png)\n\n\
-         ![stabilizers, coning](long_horizon_stabilizers_coning.png)\n\n![norm, coning](long_horizon_norm.png)\n\n\
-         At 1 kHz. Constant rate: |ω| = 1 rad/s about (0.36, −0.48, 0.80) (H|ω| = 1e-3), held samples, from the \
-         identity; the reference is the exact rotation for the same f32 inputs. Coning: α = 0.3 rad at 1 Hz, f32 or \
-         f64 samples of the exact rate through the fourth-order sample history; the reference is the exact \
-         motion. Every post-step stabilizer; no Baumgarte row, which since quatprop 0.2 exists for the Runge–Kutta \
-         schemes only (a right-hand-side option of their engine, not a stabilizer). A growth exponent near 1 is a linear (biased) drift, near ½ a random walk; a truncation-dominated \
-         scheme grows linearly too (its per-step error is the same every step).\n\n{table}"
+        "### Long horizon in f32: own error and error against physical time\n\n\
+         ![own error, constant rate](long_horizon_own_constant.png)\n\n\
+         ![own error, coning](long_horizon_own_coning.png)\n\n\
+         ![own and physical-time error](long_horizon_physical.png)\n\n\
+         ![every scheme](long_horizon.png)\n\n![norm](long_horizon_norm.png)\n\n\
+         At 1 kHz, {total:.0e} steps. Every f32 run has an **f64 shadow**: the same scheme, input model and \
+         stabilizer in f64 (Kahan-compensated), fed the same f32 samples and the same f32 dts. **Own error** = \
+         the f32 state's angle to its shadow: what f32 arithmetic adds. **Error against physical time** = its \
+         angle to the exact motion at t = k·0.001 s (double-double reference): that also holds the samples' \
+         rounding, the time base and the scheme's truncation, and it can pass through zero by cancellation, \
+         which is why it is not the measure of the arithmetic. The shadow's own physical-time error is the \
+         floor no f32 arithmetic can go below. dts from `FixedPeriod::<f32>::new(1e-3)` (exact time base; \
+         dt = f32(0.001) costs 4.75e-3 rad at 10⁸ whatever the arithmetic: see the time-base study). Constant \
+         rate: 1 rad/s about (0.36, −0.48, 0.80) from the identity, reference the exact rotation of the f32 \
+         sample's rate. Coning: α = 0.3 rad at Ω = 2π/√2 rad/s, incommensurate with 1 kHz (a commensurate \
+         cone repeats its roundings every period and locks the error), f32 samples of the exact rate, \
+         reference the exact motion. Growth exponent: slope of log error against log steps over the last two \
+         decades (1 a biased drift, ½ a random walk). No Baumgarte row: since quatprop 0.2 it is a right-hand-side \
+         option of the Runge–Kutta schemes, not a post-step stabilizer.\n\n{headline}\n\n{table}"
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shadow is what it claims: with the same f32 samples and dts, an f64 run of the same
+    /// configuration; its own physical-time error on the constant rate is tiny (Hold is exact there), so
+    /// the f32 run's own and physical-time errors agree.
+    #[test]
+    fn shadow_tracks_physical_time_on_a_constant_rate() {
+        let r = Run {
+            group: "test",
+            motion: Motion::Constant,
+            scheme: SchemeKind::ExpMap,
+            stabilizer: StabilizerKind::FirstOrder,
+            input: In::Hold,
+            acc: Acc::Plain,
+        };
+        let pts = run_one(&r, 100_000, &indicatif::ProgressBar::hidden());
+        let last = pts.last().unwrap();
+        assert_eq!(last.steps, 100_000);
+        assert!(last.f64_physical_error_rad < 1e-12, "{last:?}");
+        assert!(
+            (last.own_error_rad - last.physical_error_rad).abs() < 1e-11,
+            "{last:?}"
+        );
+        assert!(last.own_error_rad > 0.0);
+    }
+
+    #[test]
+    fn checkpoints_include_the_decades() {
+        let c = checkpoints(100_000_000);
+        for d in [1_000_000, 10_000_000, 100_000_000] {
+            assert!(c.contains(&d));
+        }
+    }
 }

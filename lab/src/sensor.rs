@@ -6,18 +6,19 @@
 
 use crate::configs::{Config, Input, Peer, Sample, Stab};
 use crate::scenes::{gauss_step, Scene};
+use crate::table::{cell, Csv, Table};
 use crate::work_precision::attitude_error;
 use crate::Ctx;
 use quatprop::input::GaussPoints;
 use quatprop::scheme::{Magnus4, SchemeKind};
 use quatprop::stabilize::Normalize;
 use quatprop::{Propagator, Quat, Vec3};
-use std::fmt::Write as _;
+use serde::{Deserialize, Serialize};
 
 /// splitmix64: a small deterministic generator (the study is reproducible bit for bit).
-struct Rng(u64);
+pub struct Rng(pub u64);
 impl Rng {
-    fn next_u64(&mut self) -> u64 {
+    pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -25,11 +26,11 @@ impl Rng {
         z ^ (z >> 31)
     }
     /// Uniform in [0, 1).
-    fn uniform(&mut self) -> f64 {
+    pub fn uniform(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
     }
     /// Standard normal (Box–Muller).
-    fn normal(&mut self) -> f64 {
+    pub fn normal(&mut self) -> f64 {
         let u1 = self.uniform().max(1e-300);
         let u2 = self.uniform();
         (-2.0 * u1.ln()).sqrt() * (2.0 * core::f64::consts::PI * u2).cos()
@@ -236,6 +237,87 @@ fn configs() -> Vec<Config> {
     v
 }
 
+/// The label of the rows that describe the stream itself.
+const STREAM_ROW: &str = "*the stream itself: its exact integral vs the motion*";
+
+/// One configuration under one sensor model (or, with configuration [`STREAM_ROW`], the stream itself).
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SensorRow {
+    pub sensor: String,
+    pub configuration: String,
+    /// Max attitude error against the same stream integrated exactly (rad; empty: not applicable).
+    pub max_error_vs_stream_rad: Option<f64>,
+    /// Max attitude error against the true motion (rad; empty: the configuration does not exist).
+    pub max_error_vs_truth_rad: Option<f64>,
+    pub refused_steps: u64,
+    /// Samples of this sensor's stream that were saturated / dropped.
+    pub saturated_samples: u64,
+    pub dropped_samples: u64,
+}
+impl Csv for SensorRow {
+    const FILE: &'static str = "sensor_realism.csv";
+}
+impl Table for SensorRow {
+    /// Configurations down, sensor models across; then the stream's own row and its sample counts.
+    fn render(rows: &[Self]) -> String {
+        let mut sensors: Vec<&str> = Vec::new();
+        let mut configs: Vec<&str> = Vec::new();
+        for r in rows {
+            if !sensors.contains(&r.sensor.as_str()) {
+                sensors.push(&r.sensor);
+            }
+            if r.configuration != STREAM_ROW && !configs.contains(&r.configuration.as_str()) {
+                configs.push(&r.configuration);
+            }
+        }
+        let mut t = format!(
+            "| configuration | {} |\n|---|{}\n",
+            sensors
+                .iter()
+                .map(|s| cell(s))
+                .collect::<Vec<_>>()
+                .join(" | "),
+            "---|".repeat(sensors.len())
+        );
+        let get = |c: &str, s: &str| rows.iter().find(|r| r.configuration == c && r.sensor == s);
+        for c in &configs {
+            t += &format!("| {} |", cell(c));
+            for s in &sensors {
+                t += &match get(c, s) {
+                    Some(SensorRow {
+                        max_error_vs_stream_rad: Some(a),
+                        max_error_vs_truth_rad: Some(b),
+                        refused_steps,
+                        ..
+                    }) => {
+                        if *refused_steps > 0 {
+                            format!(" {a:.1e} / {b:.1e} | ({refused_steps} refused)")
+                        } else {
+                            format!(" {a:.1e} / {b:.1e} |")
+                        }
+                    }
+                    _ => " – |".into(),
+                };
+            }
+            t += "\n";
+        }
+        t += &format!("| {STREAM_ROW} |");
+        for s in &sensors {
+            t += &get(STREAM_ROW, s)
+                .and_then(|r| r.max_error_vs_truth_rad)
+                .map_or(" – |".into(), |e| format!(" {e:.2e} |"));
+        }
+        t += "\n| *samples saturated / dropped* |";
+        for s in &sensors {
+            t += &get(STREAM_ROW, s).map_or(" – |".into(), |r| {
+                format!(" {} / {} |", r.saturated_samples, r.dropped_samples)
+            });
+        }
+        t + "\n"
+    }
+}
+
 pub fn sensor_study(
     ctx: &mut Ctx,
     scenes: &[Box<dyn Scene>],
@@ -249,21 +331,7 @@ pub fn sensor_study(
     let horizon = opt.horizon.unwrap_or(if opt.quick { 1.37 } else { 5.37 });
     let configs = configs();
     let models = models();
-    let mut csv = String::from(
-        "sensor,config,max_error_vs_stream_rad,max_error_vs_truth_rad,refused_steps\n",
-    );
-    let mut head = String::from("| configuration |");
-    let mut sep = String::from("|---|");
-    for m in &models {
-        let _ = write!(head, " {} |", m.name);
-        sep.push_str("---|");
-    }
-    let mut rows: Vec<String> = configs
-        .iter()
-        .map(|c| format!("| {} |", c.label()))
-        .collect();
-    let mut stream_row = String::from("| *the stream itself: its exact integral vs the motion* |");
-    let mut facts = String::from("| *samples saturated / dropped* |");
+    let mut rows = Vec::new();
     let mut ref_check = 0.0f64;
     for (mi, m) in models.iter().enumerate() {
         let s = sensor_stream(scene.as_ref(), m, hz, horizon, 0x5EED + mi as u64);
@@ -282,12 +350,23 @@ pub fn sensor_study(
             .zip(&truth)
             .map(|(a, b)| a.angle_to(*b))
             .fold(0.0, f64::max);
-        let _ = write!(stream_row, " {own:.2e} |");
-        let _ = write!(facts, " {} / {} |", s.saturated, s.dropped);
-        for (ci, c) in configs.iter().enumerate() {
+        let row = |configuration: String| SensorRow {
+            sensor: m.name.into(),
+            configuration,
+            max_error_vs_stream_rad: None,
+            max_error_vs_truth_rad: None,
+            refused_steps: 0,
+            saturated_samples: s.saturated as u64,
+            dropped_samples: s.dropped as u64,
+        };
+        rows.push(SensorRow {
+            max_error_vs_truth_rad: Some(own),
+            ..row(STREAM_ROW.into())
+        });
+        for c in &configs {
             ctx.tick();
             let Ok(mut run) = c.build::<f32>(Quat::from_f64(q0), (1.0 / hz) as f32) else {
-                let _ = write!(rows[ci], " – |");
+                rows.push(row(c.label()));
                 continue;
             };
             let (mut from, mut vs_stream, mut vs_truth) = (0, 0.0f64, 0.0f64);
@@ -298,19 +377,15 @@ pub fn sensor_study(
                 vs_truth = vs_truth.max(attitude_error(run.attitude(), truth[j]));
             }
             let (refused, _) = run.refused();
-            let _ = write!(rows[ci], " {vs_stream:.1e} / {vs_truth:.1e} |");
-            if refused > 0 {
-                let _ = write!(rows[ci], " ({refused} refused)");
-            }
-            let _ = writeln!(
-                csv,
-                "{},\"{}\",{vs_stream},{vs_truth},{refused}",
-                m.name,
-                c.label()
-            );
+            rows.push(SensorRow {
+                max_error_vs_stream_rad: Some(vs_stream),
+                max_error_vs_truth_rad: Some(vs_truth),
+                refused_steps: refused,
+                ..row(c.label())
+            });
         }
     }
-    ctx.csv("sensor_realism.csv", &csv);
+    let table = ctx.table(&rows);
     format!(
         "### Sensor realism: {} at {hz} Hz, f32\n\nMaximum attitude error over {horizon} s (32 checkpoints), \
          **against the same sensor stream integrated exactly / against the true motion** (rad). The stream's exact \
@@ -322,12 +397,11 @@ pub fn sensor_study(
          linear step over its true length, so after a drop it builds up its order again and under jitter every \
          history step is a linear one. `ahrs` has no \
          time argument (a fixed `sample_period`), so gaps and jitter are invisible to it. Noise and bias models are \
-         MPU-6000 class; the 2000 °/s roll exceeds a ±1000 °/s range on the roll axis, so those readings clip.\n\n{head}\n{sep}\n{}\n{stream_row}\n{facts}\n\n\
+         MPU-6000 class; the 2000 °/s roll exceeds a ±1000 °/s range on the roll axis, so those readings clip.\n\n{table}\n\
          Reading: the first number is what the integrator adds to the sensor's own error; the second is what the \
          user gets. A scheme whose first number is far below the stream's own row costs nothing the sensor did not \
          already lose. CSV: `sensor_realism.csv`.\n",
         scene.name(),
-        rows.join("\n")
     )
 }
 

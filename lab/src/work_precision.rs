@@ -9,9 +9,11 @@
 use crate::configs::{scheme_name, Config, Input, LabReal, Peer, Sample, Stab};
 use crate::plot::{plot, Axis, Series};
 use crate::scenes::Scene;
+use crate::table::{self, cell, Csv, Table};
 use crate::Ctx;
 use quatprop::scheme::SchemeKind;
 use quatprop::{Error, Quat, Vec3};
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -174,28 +176,340 @@ pub fn full_grid() -> Vec<Config> {
     v
 }
 
-pub fn csv_rows(scene: &str, prec: Precision, points: &[Point]) -> String {
-    let mut csv = String::new();
-    for p in points {
-        let _ = writeln!(
-            csv,
-            "{scene},{},\"{}\",{},{},{},{},{},{},{}",
-            prec.name(),
-            p.config.label(),
-            p.hz,
-            p.samples,
-            p.final_err,
-            p.max_err,
-            p.ns_per_sample,
-            p.refused,
-            p.first_error.map_or(String::new(), |e| format!("{e:?}"))
-        );
-    }
-    csv
+/// One measured point as a CSV row (every work-precision CSV has these columns).
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct WpRow {
+    pub scene: String,
+    pub precision: String,
+    pub configuration: String,
+    pub is_peer: bool,
+    pub rate_hz: u32,
+    pub samples: u64,
+    pub final_error_rad: f64,
+    pub max_error_rad: f64,
+    pub host_ns_per_sample: f64,
+    pub refused_steps: u64,
+    /// The first refusal's error (empty: none).
+    pub first_error: String,
+    /// Its variant name (empty: none).
+    pub error_kind: String,
 }
 
-pub const CSV_HEADER: &str =
-    "scene,precision,config,rate_hz,samples,final_error_rad,max_error_rad,host_ns_per_sample,refused_steps,first_error\n";
+impl WpRow {
+    fn accepted(&self) -> bool {
+        self.refused_steps == 0 && self.max_error_rad.is_finite()
+    }
+    /// "final / max" or the refusal.
+    fn errors(&self) -> String {
+        if self.refused_steps > 0 {
+            format!("refused {} steps ({})", self.refused_steps, self.error_kind)
+        } else {
+            format!("{:.2e} / {:.2e}", self.final_error_rad, self.max_error_rad)
+        }
+    }
+}
+
+/// Typed rows of one scene and precision.
+pub fn wp_rows(scene: &str, prec: Precision, points: &[Point]) -> Vec<WpRow> {
+    points
+        .iter()
+        .map(|p| WpRow {
+            scene: scene.into(),
+            precision: prec.name().into(),
+            configuration: p.config.label(),
+            is_peer: p.config.is_peer(),
+            rate_hz: p.hz,
+            samples: p.samples as u64,
+            final_error_rad: p.final_err,
+            max_error_rad: p.max_err,
+            host_ns_per_sample: p.ns_per_sample,
+            refused_steps: p.refused,
+            first_error: p.first_error.map_or(String::new(), |e| format!("{e:?}")),
+            error_kind: if p.first_error.is_some() {
+                error_kind(p.first_error)
+            } else {
+                String::new()
+            },
+        })
+        .collect()
+}
+
+/// A work-precision CSV file: [`WpRow`]s under their own file name.
+macro_rules! wp_file {
+    ($(#[$m:meta])* $name:ident, $file:literal) => {
+        $(#[$m])*
+        #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+        #[serde(transparent)]
+        pub struct $name(pub WpRow);
+        impl Csv for $name {
+            const FILE: &'static str = $file;
+        }
+    };
+}
+wp_file!(
+    /// The per-scene sweeps.
+    WpScenes,
+    "work_precision_scenes.csv"
+);
+wp_file!(
+    /// The stabilizers side by side (also a table: configurations down, rates across).
+    WpStabilizers,
+    "work_precision_stabilizers.csv"
+);
+wp_file!(
+    /// The full grid.
+    WpGrid,
+    "work_precision_grid.csv"
+);
+wp_file!(
+    /// The headline sweep (also a table at the reference rate).
+    WpHeadline,
+    "work_precision_coning_f32.csv"
+);
+
+/// The reference rate of a table from the rates in its rows.
+fn rows_rate(rows: &[WpRow]) -> u32 {
+    let mut rates: Vec<u32> = rows.iter().map(|r| r.rate_hz).collect();
+    rates.sort_unstable();
+    rates.dedup();
+    if rates.is_empty() {
+        0
+    } else {
+        table_rate(&rates)
+    }
+}
+
+impl Table for WpStabilizers {
+    fn render(rows: &[Self]) -> String {
+        let mut rates: Vec<u32> = rows.iter().map(|r| r.0.rate_hz).collect();
+        rates.sort_unstable();
+        rates.dedup();
+        let mut t = format!(
+            "| configuration | precision |{}\n|---|---|{}\n",
+            rates
+                .iter()
+                .map(|r| format!(" {r} Hz: max error / ns |"))
+                .collect::<String>(),
+            "---|".repeat(rates.len())
+        );
+        let mut keys: Vec<(&str, &str)> = Vec::new();
+        for r in rows {
+            let k = (r.0.configuration.as_str(), r.0.precision.as_str());
+            if !keys.contains(&k) {
+                keys.push(k);
+            }
+        }
+        for (c, p) in keys {
+            t += &format!("| {} | {p} |", cell(c));
+            for hz in &rates {
+                let r = rows
+                    .iter()
+                    .find(|r| r.0.configuration == c && r.0.precision == p && r.0.rate_hz == *hz);
+                t += &match r {
+                    Some(r) if r.0.accepted() => {
+                        format!(
+                            " {:.2e} / {:.1} |",
+                            r.0.max_error_rad, r.0.host_ns_per_sample
+                        )
+                    }
+                    Some(r) => format!(" {} |", r.0.errors()),
+                    None => " – |".into(),
+                };
+            }
+            t += "\n";
+        }
+        t
+    }
+}
+
+impl Table for WpHeadline {
+    fn render(rows: &[Self]) -> String {
+        let rows: Vec<WpRow> = rows.iter().map(|r| r.0.clone()).collect();
+        let r = rows_rate(&rows);
+        let mut t = table::header(&[
+            "configuration",
+            &format!("final / max error at {r} Hz (rad)"),
+            "host ns/sample",
+        ]);
+        for p in rows.iter().filter(|p| p.rate_hz == r) {
+            t += &format!(
+                "| {} | {} | {:.1} |\n",
+                cell(&p.configuration),
+                p.errors(),
+                p.host_ns_per_sample
+            );
+        }
+        t
+    }
+}
+
+/// The per-scene summary: best quatprop configuration and best peer at the reference rate.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSummaryRow {
+    pub scene: String,
+    pub precision: String,
+    pub rate_hz: u32,
+    /// Empty: none accepted.
+    pub best_quatprop: String,
+    pub best_quatprop_final_error_rad: f64,
+    pub best_quatprop_max_error_rad: f64,
+    pub best_peer: String,
+    pub best_peer_final_error_rad: f64,
+    pub best_peer_max_error_rad: f64,
+    /// Configurations refused at this rate, with their refusals ("; "-separated; empty: none).
+    pub refused: String,
+}
+impl Csv for SceneSummaryRow {
+    const FILE: &'static str = "work_precision_summary.csv";
+}
+impl Table for SceneSummaryRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "scene",
+            "precision",
+            "rate (Hz)",
+            "best quatprop: final / max error (rad)",
+            "best peer: final / max error (rad)",
+            "ratio (max error)",
+        ]);
+        let best = |c: &str, f: f64, m: f64| {
+            if c.is_empty() {
+                "–".to_string()
+            } else {
+                format!("{}: {f:.2e} / {m:.2e}", cell(c))
+            }
+        };
+        for r in rows {
+            let ratio = if r.best_quatprop.is_empty() || r.best_peer.is_empty() {
+                "–".to_string()
+            } else {
+                format!(
+                    "{:.0}×",
+                    r.best_peer_max_error_rad / r.best_quatprop_max_error_rad
+                )
+            };
+            t += &format!(
+                "| {} | {} | {} | {} | {} | {ratio} |\n",
+                r.scene,
+                r.precision,
+                r.rate_hz,
+                best(
+                    &r.best_quatprop,
+                    r.best_quatprop_final_error_rad,
+                    r.best_quatprop_max_error_rad
+                ),
+                best(
+                    &r.best_peer,
+                    r.best_peer_final_error_rad,
+                    r.best_peer_max_error_rad
+                ),
+            );
+            if !r.refused.is_empty() {
+                t += &format!(
+                    "| | | | refused at {} Hz: {} | | |\n",
+                    r.rate_hz,
+                    cell(&r.refused)
+                );
+            }
+        }
+        t
+    }
+}
+
+/// The Pareto front on the Cortex-M4F.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct M4fRow {
+    pub configuration: String,
+    pub rate_hz: u32,
+    pub m4f_instructions_per_step: f64,
+    pub m4f_instructions_per_second: f64,
+    pub max_error_rad: f64,
+}
+impl Csv for M4fRow {
+    const FILE: &'static str = "work_precision_m4f_pareto.csv";
+}
+impl Table for M4fRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "Pareto configuration (M4F)",
+            "rate (Hz)",
+            "M4F instructions per step",
+            "M4F instructions per second",
+            "max error (rad)",
+        ]);
+        for r in rows {
+            t += &format!(
+                "| {} | {} | {:.1} | {:.3e} | {:.2e} |\n",
+                cell(&r.configuration),
+                r.rate_hz,
+                r.m4f_instructions_per_step,
+                r.m4f_instructions_per_second,
+                r.max_error_rad
+            );
+        }
+        t
+    }
+}
+
+/// Each peer against quatprop's best within the peer's host time per simulated second.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EqualCostRow {
+    pub peer: String,
+    pub peer_max_error_rad: f64,
+    pub peer_ns_per_sample: f64,
+    /// Empty: none within the peer's host time.
+    pub quatprop: String,
+    pub quatprop_rate_hz: Option<u32>,
+    pub quatprop_max_error_rad: Option<f64>,
+    pub quatprop_ns_per_sample: Option<f64>,
+}
+impl Csv for EqualCostRow {
+    const FILE: &'static str = "work_precision_equal_cost.csv";
+}
+impl Table for EqualCostRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "peer",
+            "its max error (rad)",
+            "host ns/sample",
+            "quatprop's best within that host time per simulated second",
+            "its max error (rad)",
+            "host ns/sample",
+            "error ratio",
+        ]);
+        for r in rows {
+            match (
+                r.quatprop_rate_hz,
+                r.quatprop_max_error_rad,
+                r.quatprop_ns_per_sample,
+            ) {
+                (Some(hz), Some(e), Some(ns)) => {
+                    t += &format!(
+                        "| {} | {:.2e} | {:.1} | {} at {hz} Hz | {e:.2e} | {ns:.1} | **{:.0}×** |\n",
+                        cell(&r.peer),
+                        r.peer_max_error_rad,
+                        r.peer_ns_per_sample,
+                        cell(&r.quatprop),
+                        r.peer_max_error_rad / e
+                    );
+                }
+                _ => {
+                    t += &format!(
+                        "| {} | {:.2e} | {:.1} | none within its host time | | | |\n",
+                        cell(&r.peer),
+                        r.peer_max_error_rad,
+                        r.peer_ns_per_sample
+                    );
+                }
+            }
+        }
+        t
+    }
+}
 
 /// Pareto front (cost, error) over accepted points.
 fn pareto(points: &[&Point], cost: impl Fn(&Point) -> Option<f64>) -> Vec<(f64, f64)> {
@@ -378,10 +692,8 @@ fn table_rate(rates: &[u32]) -> u32 {
 /// summary table of the best quatprop configuration and the best peer at the reference rate.
 pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> String {
     let configs = opt.configs();
-    let mut csv = String::from(CSV_HEADER);
-    let mut table = String::from(
-        "| scene | precision | rate (Hz) | best quatprop: final / max error (rad) | best peer: final / max error (rad) | ratio (max error) |\n|---|---|---|---|---|---|\n",
-    );
+    let mut csv: Vec<WpScenes> = Vec::new();
+    let mut summary = Vec::new();
     let mut figures = String::new();
     for scene in scenes {
         if !opt.scenes.is_empty() && !opt.scenes.iter().any(|s| s == scene.key()) {
@@ -398,7 +710,11 @@ pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> Str
                 horizon,
                 opt.repeats(),
             );
-            csv.push_str(&csv_rows(scene.key(), prec, &points));
+            csv.extend(
+                wp_rows(scene.key(), prec, &points)
+                    .into_iter()
+                    .map(WpScenes),
+            );
             let name = format!("wp_{}_{}", scene.key(), prec.name());
             plot_points(
                 ctx,
@@ -419,34 +735,24 @@ pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> Str
                 .filter(|p| p.hz == r && p.refused > 0)
                 .map(|p| format!("{} {}", p.config.label(), fmt_err(p)))
                 .collect();
-            let cell = |p: Option<&Point>| {
-                p.map_or("–".into(), |p| {
-                    format!("{}: {}", p.config.label(), fmt_err(p))
-                })
-            };
             let (bq, bp) = (best(false), best(true));
-            let ratio = match (bq, bp) {
-                (Some(q), Some(p)) => format!("{:.0}×", p.max_err / q.max_err),
-                _ => "–".into(),
-            };
-            let _ = writeln!(
-                table,
-                "| {} | {} | {r} | {} | {} | {ratio} |",
-                scene.name(),
-                prec.name(),
-                cell(bq),
-                cell(bp)
-            );
-            if !refused.is_empty() {
-                let _ = writeln!(
-                    table,
-                    "| | | | refused at {r} Hz: {} | | |",
-                    refused.join("; ")
-                );
-            }
+            let name_of = |p: Option<&Point>| p.map_or(String::new(), |p| p.config.label());
+            summary.push(SceneSummaryRow {
+                scene: scene.name().into(),
+                precision: prec.name().into(),
+                rate_hz: r,
+                best_quatprop: name_of(bq),
+                best_quatprop_final_error_rad: bq.map_or(f64::NAN, |p| p.final_err),
+                best_quatprop_max_error_rad: bq.map_or(f64::NAN, |p| p.max_err),
+                best_peer: name_of(bp),
+                best_peer_final_error_rad: bp.map_or(f64::NAN, |p| p.final_err),
+                best_peer_max_error_rad: bp.map_or(f64::NAN, |p| p.max_err),
+                refused: refused.join("; "),
+            });
         }
     }
-    ctx.csv("work_precision_scenes.csv", &csv);
+    ctx.rows(&csv);
+    let table = ctx.table(&summary);
     format!(
         "### Work–precision per scene, f32 and f64\n\nEvery scheme with linear input, the sample-history and mid \
          inputs, all with FirstOrder, and every peer, on the same samples of each scene (ω(t_k), t_k = k·dt with dt \
@@ -472,31 +778,15 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
         }
     }
     let (rates, horizon) = opt.rates_horizon(scene);
-    let mut csv = String::from(CSV_HEADER);
+    let mut csv: Vec<WpStabilizers> = Vec::new();
     let mut figures = String::new();
-    let mut table = String::from("| configuration | precision |");
-    for r in &rates {
-        let _ = write!(table, " {r} Hz: max error / ns |");
-    }
-    table.push_str("\n|---|---|");
-    for _ in &rates {
-        table.push_str("---|");
-    }
-    table.push('\n');
     for prec in opt.precisions() {
         let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.repeats());
-        csv.push_str(&csv_rows(scene.key(), prec, &points));
-        for c in &configs {
-            let _ = write!(table, "| {} | {} |", c.label(), prec.name());
-            for p in points.iter().filter(|p| p.config == *c) {
-                if p.accepted() {
-                    let _ = write!(table, " {:.2e} / {:.1} |", p.max_err, p.ns_per_sample);
-                } else {
-                    let _ = write!(table, " {} |", fmt_err(p));
-                }
-            }
-            table.push('\n');
-        }
+        csv.extend(
+            wp_rows(scene.key(), prec, &points)
+                .into_iter()
+                .map(WpStabilizers),
+        );
         let name = format!("wp_stabilizers_{}_{}", scene.key(), prec.name());
         plot_points(
             ctx,
@@ -506,7 +796,7 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
         );
         let _ = write!(figures, "![{name}]({name}.png)\n\n");
     }
-    ctx.csv("work_precision_stabilizers.csv", &csv);
+    let table = ctx.table(&csv);
     format!(
         "### Work–precision per stabilizer: {}\n\nRk4 with linear input and the exponential map with the sample \
          history, each with every stabilizer (Every(16); Baumgarte k = 0.5 /s, for Rk4 only: since quatprop 0.2 \
@@ -546,18 +836,18 @@ pub fn m4f_bench() -> Option<Vec<BenchRow>> {
 pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let configs = full_grid();
     let (rates, horizon) = opt.rates_horizon(scene);
-    let mut csv = String::from(CSV_HEADER);
+    let mut csv: Vec<WpGrid> = Vec::new();
     let mut f32_points = Vec::new();
     let mut counts = 0;
     for prec in opt.precisions() {
         let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.repeats());
         counts += points.len();
-        csv.push_str(&csv_rows(scene.key(), prec, &points));
+        csv.extend(wp_rows(scene.key(), prec, &points).into_iter().map(WpGrid));
         if prec == Precision::F32 {
             f32_points = points;
         }
     }
-    ctx.csv("work_precision_grid.csv", &csv);
+    ctx.rows(&csv);
     let Some(bench) = m4f_bench() else {
         return format!(
             "### Full grid and Cortex-M4F cost\n\n{counts} points (every scheme × stabilizer × input × rate × \
@@ -634,25 +924,22 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
             &series,
         )
     });
-    let mut table = String::from(
-        "| Pareto configuration (M4F) | rate (Hz) | M4F instructions per step | M4F instructions per second | max error (rad) |\n|---|---|---|---|---|\n",
-    );
+    let mut pareto_rows = Vec::new();
     for (c, e) in &front {
         if let Some(p) = f32_points
             .iter()
             .find(|p| p.accepted() && cost(p) == Some(*c) && p.max_err == *e)
         {
-            let _ = writeln!(
-                table,
-                "| {} | {} | {:.1} | {:.3e} | {:.2e} |",
-                p.config.label(),
-                p.hz,
-                instr(&p.config).unwrap_or(f64::NAN),
-                c,
-                e
-            );
+            pareto_rows.push(M4fRow {
+                configuration: p.config.label(),
+                rate_hz: p.hz,
+                m4f_instructions_per_step: instr(&p.config).unwrap_or(f64::NAN),
+                m4f_instructions_per_second: *c,
+                max_error_rad: *e,
+            });
         }
     }
+    let table = ctx.table(&pareto_rows);
     format!(
         "### Full grid and Cortex-M4F cost: {}\n\n{counts} points (every scheme × stabilizer × input model × rate × \
          precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. The plot puts the f32 errors (bit-identical on the M4F) against \
@@ -683,9 +970,11 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     configs.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
     let (rates, horizon) = opt.rates_horizon(scene);
     let points = sweep::<f32>(ctx, scene, &configs, &rates, horizon, opt.repeats());
-    let mut csv = String::from(CSV_HEADER);
-    csv.push_str(&csv_rows(scene.key(), Precision::F32, &points));
-    ctx.csv("work_precision_coning_f32.csv", &csv);
+    let csv: Vec<WpHeadline> = wp_rows(scene.key(), Precision::F32, &points)
+        .into_iter()
+        .map(WpHeadline)
+        .collect();
+    let table = ctx.table(&csv);
     plot_points(
         ctx,
         "work_precision_coning_f32",
@@ -694,22 +983,8 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     );
     let r = table_rate(&rates);
     let at = |hz: u32| points.iter().filter(move |p| p.hz == hz && p.accepted());
-    let mut table = format!(
-        "| configuration | final / max error at {r} Hz (rad) | host ns/sample |\n|---|---|---|\n"
-    );
-    for p in points.iter().filter(|p| p.hz == r) {
-        let _ = writeln!(
-            table,
-            "| {} | {} | {:.1} |",
-            p.config.label(),
-            fmt_err(p),
-            p.ns_per_sample
-        );
-    }
     // Per peer: quatprop's lowest max error at no more host time per simulated second (any rate).
-    let mut vs = String::from(
-        "| peer | its max error (rad) | host ns/sample | quatprop's best within that host time per simulated second | its max error (rad) | host ns/sample | error ratio |\n|---|---|---|---|---|---|---|\n",
-    );
+    let mut vs_rows = Vec::new();
     for bp in at(r).filter(|p| p.config.is_peer()) {
         let budget = bp.ns_per_sample * bp.hz as f64;
         let q = points
@@ -718,32 +993,17 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
                 !p.config.is_peer() && p.accepted() && p.ns_per_sample * p.hz as f64 <= budget
             })
             .min_by(|a, b| a.max_err.total_cmp(&b.max_err));
-        match q {
-            Some(q) => {
-                let _ = writeln!(
-                    vs,
-                    "| {} | {:.2e} | {:.1} | {} at {} Hz | {:.2e} | {:.1} | **{:.0}×** |",
-                    bp.config.label(),
-                    bp.max_err,
-                    bp.ns_per_sample,
-                    q.config.label(),
-                    q.hz,
-                    q.max_err,
-                    q.ns_per_sample,
-                    bp.max_err / q.max_err
-                );
-            }
-            None => {
-                let _ = writeln!(
-                    vs,
-                    "| {} | {:.2e} | {:.1} | none within its host time | | | |",
-                    bp.config.label(),
-                    bp.max_err,
-                    bp.ns_per_sample
-                );
-            }
-        }
+        vs_rows.push(EqualCostRow {
+            peer: bp.config.label(),
+            peer_max_error_rad: bp.max_err,
+            peer_ns_per_sample: bp.ns_per_sample,
+            quatprop: q.map_or(String::new(), |q| q.config.label()),
+            quatprop_rate_hz: q.map(|q| q.hz),
+            quatprop_max_error_rad: q.map(|q| q.max_err),
+            quatprop_ns_per_sample: q.map(|q| q.ns_per_sample),
+        });
     }
+    let vs = ctx.table(&vs_rows);
     format!(
         "### Work–precision: coning in f32, one gyro sample per step\n\n![work-precision](work_precision_coning_f32.png)\n\n\
          {}, horizon {horizon} s, gyro rates {rates:?} Hz, every configuration fed the same f32 samples. Host time: \
