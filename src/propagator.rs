@@ -187,6 +187,30 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         Ok(())
     }
 
+    /// Takes the first sample of a stream, which sets its time origin: there is no `dt` before it. The
+    /// input model keeps it as the start of its next step where it can ([`InputModel::start`]); a saturated
+    /// sample is counted. For `Linear` and `History` this equals `push` with any `dt`.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] for a NaN or infinite sample; the propagator is then unchanged.
+    ///
+    /// ```
+    /// use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
+    /// use quatprop::{GyroSample, Propagator, Quat, Vec3};
+    /// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
+    /// p.start(GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f64)))?;
+    /// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0)), 0.5)?;
+    /// assert_eq!((p.steps(), p.input().len()), (1, 2));
+    /// # Ok::<(), quatprop::Error>(())
+    /// ```
+    pub fn start(&mut self, sample: I::Sample) -> Result<(), Error> {
+        self.input = self.input.start(&sample)?;
+        self.saturated = self
+            .saturated
+            .wrapping_add(u64::from(sample.is_saturated()));
+        Ok(())
+    }
+
     /// Pushes a FIFO burst of samples taken at a fixed period: each sample's `dt` is
     /// [`FixedPeriod::next_dt`], so time is exact over any number of bursts. Bit for bit the same as
     /// `push(sample, period.next_dt())` one sample at a time; allocates nothing. Returns how many were
@@ -262,12 +286,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             let (next, dt) = clock.advance(*timestamp).map_err(refused)?;
             match dt {
                 Some(dt) => self.push(*sample, dt).map_err(refused)?,
-                None => {
-                    self.input = self.input.start(sample).map_err(refused)?;
-                    self.saturated = self
-                        .saturated
-                        .wrapping_add(u64::from(sample.is_saturated()));
-                }
+                None => self.start(*sample).map_err(refused)?,
             }
             *clock = next;
         }

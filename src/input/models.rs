@@ -106,10 +106,12 @@ impl<T: Real> InputModel<T> for Linear<T> {
 /// the newest sample). The recommended input for a rate gyro.
 ///
 /// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
-/// third a quadratic one (third). The samples must be equally spaced: a sample whose `dt` differs from the
-/// previous one by more than [`History::SPACING_TOLERANCE`] (a refused or dropped sample, a timing change)
-/// restarts the history at the last sample, so that interval is integrated linearly over its true length
-/// and the order builds up again.
+/// third a quadratic one (third). Equally spaced samples (to within [`History::SPACING_TOLERANCE`]) use
+/// constant weights; jittered ones the cubic through the samples at their true times (each `dt` as
+/// given), still fourth order. A gap — a `dt` more than [`History::GAP_RATIO`] times the previous one, or
+/// less than its inverse (a refused or dropped sample, a restarted sensor) — restarts the history at the
+/// last sample, so that interval is integrated linearly over its true length and the order builds up
+/// again.
 ///
 /// ```
 /// use quatprop::{input::History, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
@@ -132,17 +134,20 @@ pub struct History<T> {
     /// The three most recent samples, oldest first (the last `count` are valid).
     w: [Vec3<T>; 3],
     count: u8,
-    /// The spacing (s) of the kept samples.
-    dt: T,
+    /// The spacings (s) of the kept samples: `[t_{k−1} − t_{k−2}, t_k − t_{k−1}]`.
+    dt: [T; 2],
 }
 
 impl<T: Real> History<T> {
-    /// The relative change of `dt` (2⁻¹⁰) beyond which the spacing counts as changed and the history
-    /// restarts. An exact time base ([`crate::frontend::FixedPeriod`]) varies `dt` by one ulp, far inside
-    /// it; a dropped sample doubles `dt`, far outside. Under sampling jitter beyond it every step is linear
-    /// over its true interval: the cubic with misplaced nodes would err by about `0.15·h²·|ω'|·jitter`,
-    /// more than the trapezoid's `h³|ω''|/12` unless `h·Ω` is large.
-    pub const SPACING_TOLERANCE: f64 = 1.0 / 1024.0;
+    /// The relative difference of two spacings (2⁻²⁰) within which samples count as equally spaced and
+    /// the constant weights are used. An exact time base ([`crate::frontend::FixedPeriod`]) varies an f32
+    /// `dt` by one ulp (2⁻²³ relative), inside it; treating spacings that differ by δ as equal errs by
+    /// about `δ·h²·|ω'|` per step, below f32 rounding at this tolerance.
+    pub const SPACING_TOLERANCE: f64 = 1.0 / 1_048_576.0;
+
+    /// A `dt` more than this times the previous one (or less than its inverse) is a gap: the history
+    /// restarts.
+    pub const GAP_RATIO: f64 = 1.5;
 
     /// An empty history.
     #[must_use]
@@ -150,7 +155,7 @@ impl<T: Real> History<T> {
         Self {
             w: [Vec3::ZERO; 3],
             count: 0,
-            dt: T::ZERO,
+            dt: [T::ZERO; 2],
         }
     }
 
@@ -167,6 +172,12 @@ impl<T: Real> History<T> {
     }
 }
 
+/// `true` if `a` and `b` differ by at most `tolerance·b`.
+#[inline(always)]
+fn close<T: Real>(a: T, b: T, tolerance: f64) -> bool {
+    (a - b).abs() <= b * T::from_f64(tolerance)
+}
+
 impl<T: Real> InputModel<T> for History<T> {
     type Sample = GyroSample<T>;
     type Segment = HistoryRate<T>;
@@ -177,34 +188,46 @@ impl<T: Real> InputModel<T> for History<T> {
         dt: T,
     ) -> Result<(Self, Option<(HistoryRate<T>, T)>), Error> {
         let w = finite_rate(sample)?;
-        // Spacing changed: keep only the last sample (the step becomes linear over its true length).
-        let tolerance = self.dt * T::from_f64(Self::SPACING_TOLERANCE);
-        let count = if self.count > 1 && (dt - self.dt).abs() > tolerance {
+        let [f, e] = self.dt;
+        let gap = T::from_f64(Self::GAP_RATIO);
+        // A gap: keep only the last sample (the step becomes linear over its true length).
+        let kept = if self.count > 1 && (dt > e * gap || dt * gap < e) {
             1
         } else {
             self.count
         };
         let [a, b, c] = self.w;
         let z = Vec3::ZERO;
-        let segment = match count {
+        let segment = match kept {
             0 => None,
-            1 => Some(HistoryRate {
+            1 => Some(HistoryRate::Uniform {
                 w: [z, z, c, w],
                 count: 2,
             }),
-            2 => Some(HistoryRate {
-                w: [z, b, c, w],
-                count: 3,
+            2 => Some(if close(e, dt, Self::SPACING_TOLERANCE) {
+                HistoryRate::Uniform {
+                    w: [z, b, c, w],
+                    count: 3,
+                }
+            } else {
+                HistoryRate::newton([z, b, c, w], 3, e / dt, T::ONE)
             }),
-            _ => Some(HistoryRate {
-                w: [a, b, c, w],
-                count: 4,
-            }),
+            _ => Some(
+                if close(e, dt, Self::SPACING_TOLERANCE) && close(f, dt, Self::SPACING_TOLERANCE) {
+                    HistoryRate::Uniform {
+                        w: [a, b, c, w],
+                        count: 4,
+                    }
+                } else {
+                    let inv = T::ONE / dt;
+                    HistoryRate::newton([a, b, c, w], 4, e * inv, f * inv)
+                },
+            ),
         };
         let next = Self {
             w: [b, c, w],
-            count: if count < 3 { count + 1 } else { 3 },
-            dt,
+            count: if kept < 3 { kept + 1 } else { 3 },
+            dt: [e, dt],
         };
         Ok((next, segment.map(|s| (s, dt))))
     }
@@ -214,7 +237,7 @@ impl<T: Real> InputModel<T> for History<T> {
         Ok(Self {
             w: [Vec3::ZERO, Vec3::ZERO, w],
             count: 1,
-            dt: T::ZERO,
+            dt: [T::ZERO; 2],
         })
     }
     #[inline(always)]
@@ -325,6 +348,9 @@ pub struct GaussPoints<T> {
 }
 
 impl<T: Real> GaussPoints<T> {
+    /// The two Gauss–Legendre nodes as fractions of the step, `½ ∓ √3/6`: where the samples belong.
+    pub const NODES: [f64; 2] = [crate::gauss::NODE_1, crate::gauss::NODE_2];
+
     /// A model waiting for the first Gauss sample of a step.
     #[must_use]
     pub const fn new() -> Self {
@@ -469,5 +495,75 @@ fn gather<T: Real>(pending: &[Vec3<T>; 4], k: usize, d: Vec3<T>) -> [Vec3<T>; 5]
         2 => [a, b, d, c, e],
         3 => [a, b, c, d, e],
         _ => [a, b, c, e, d],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::Segment;
+
+    /// The step segment for samples of ω at times `t` (the last interval is the step).
+    fn history_segment(t: &[f64], omega: impl Fn(f64) -> f64) -> (HistoryRate<f64>, f64) {
+        let mut h = History::<f64>::new();
+        let mut last = None;
+        for (k, &tk) in t.iter().enumerate() {
+            let s = GyroSample::new(Vec3::new(0.0, 0.0, omega(tk)));
+            let dt = if k == 0 { 1.0 } else { tk - t[k - 1] };
+            let (next, seg) = h.accept(&s, dt).unwrap();
+            h = next;
+            last = seg;
+        }
+        last.unwrap()
+    }
+
+    #[test]
+    fn jittered_history_integrates_a_cubic_exactly() {
+        let omega = |t: f64| 0.3 - 2.0 * t + 5.0 * t * t - 7.0 * t * t * t;
+        let integral = |a: f64, b: f64| {
+            let f = |t: f64| 0.3 * t - t * t + 5.0 / 3.0 * t.powi(3) - 7.0 / 4.0 * t.powi(4);
+            f(b) - f(a)
+        };
+        // ±20 % jitter: inside the gap ratio, outside the spacing tolerance.
+        let t = [0.0, 0.011, 0.0195, 0.0302];
+        let (seg, h) = history_segment(&t, omega);
+        assert!(matches!(seg, HistoryRate::Newton { .. }));
+        let got = 2.0 * seg.half_angle(0.5 * h).z;
+        assert!((got - integral(t[2], t[3])).abs() < 1e-16, "{got:e}");
+        // The interpolant reproduces ω inside the step (RK stages read it).
+        for c in [0.0, 0.25, 0.5, 0.8, 1.0] {
+            let w = seg.rate_at(c).z;
+            assert!((w - omega(t[2] + c * h)).abs() < 1e-15, "c = {c}: {w}");
+        }
+    }
+
+    #[test]
+    fn equal_spacing_takes_the_constant_weights_and_a_gap_restarts() {
+        let omega = |t: f64| (3.0 * t).sin();
+        let (seg, _) = history_segment(&[0.0, 0.01, 0.02, 0.03], omega);
+        assert!(matches!(seg, HistoryRate::Uniform { count: 4, .. }));
+        // The Newton form at equal spacing agrees with the constant weights to rounding.
+        let w = [0.0, 0.01, 0.02, 0.03].map(|t| Vec3::new(0.0, 0.0, omega(t)));
+        let newton = HistoryRate::newton(w, 4, 1.0, 1.0);
+        let d = newton.half_angle(0.005).z - seg.half_angle(0.005).z;
+        assert!(d.abs() < 1e-18, "{d:e}");
+        // dt doubled (a dropped sample): the step is linear over the true interval.
+        let (seg, _) = history_segment(&[0.0, 0.01, 0.02, 0.04], omega);
+        assert!(matches!(seg, HistoryRate::Uniform { count: 2, .. }));
+    }
+
+    #[test]
+    fn a_constant_rate_integrates_exactly_in_f32() {
+        // The difference form: no rounded weight multiplies the constant part.
+        let w = Vec3::new(0.36_f32, -0.48, 0.8);
+        let mut h = History::<f32>::new();
+        let mut seg = None;
+        for _ in 0..4 {
+            let (next, s) = h.accept(&GyroSample::new(w), 1e-3).unwrap();
+            h = next;
+            seg = s;
+        }
+        let (seg, dt) = seg.unwrap();
+        assert_eq!(seg.half_angle(0.5 * dt), w * (0.5 * dt));
     }
 }

@@ -108,21 +108,67 @@ impl<T: Real> Segment<T> for QuadraticRate<T> {
     }
 }
 
-/// ω from the sample history: the polynomial through the last 2, 3 or 4 equally spaced samples
+/// ω from the sample history: the polynomial through the last 2, 3 or 4 samples
 /// ω_{k−2}, ω_{k−1}, ω_k, ω_{k+1} on the last interval `[t_k, t_{k+1}]`.
+///
+/// `Uniform`: equally spaced samples, Lagrange weights as constants. `Newton`: samples at their true times
+/// (jittered timestamps), the Newton form `p(c) = ω_k + (ω_{k+1} − ω_k)c + d₂ c(c − 1) + d₃ c(c − 1)(c + r)`
+/// in units of the step, with the divided differences `d₂`, `d₃` and `r = (t_k − t_{k−1})/h`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HistoryRate<T> {
-    /// Samples at c = −2, −1, 0, 1 (oldest first); with fewer, the leading entries are zero.
-    pub(crate) w: [Vec3<T>; 4],
-    /// 2, 3 or 4 samples.
-    pub(crate) count: u8,
+pub enum HistoryRate<T> {
+    /// Equally spaced samples.
+    Uniform {
+        /// Samples at c = −2, −1, 0, 1 (oldest first); with fewer, the leading entries are zero.
+        w: [Vec3<T>; 4],
+        /// 2, 3 or 4 samples.
+        count: u8,
+    },
+    /// Samples at their true times.
+    Newton {
+        /// ω_k and ω_{k+1}.
+        ends: [Vec3<T>; 2],
+        /// Second and third divided differences (per unit step²  and step³; zero with fewer samples).
+        d2: Vec3<T>,
+        /// See `d2`.
+        d3: Vec3<T>,
+        /// `(t_k − t_{k−1})/h`.
+        r: T,
+    },
 }
 
 impl<T: Real> HistoryRate<T> {
-    /// Lagrange weights at c for the nodes of this model (−2, −1, 0, 1; the unused ones zero).
+    /// The Newton form through samples `w` (oldest first, the last two ending the step) whose spacings
+    /// relative to the step are `r1 = (t_k − t_{k−1})/h` and `r2 = (t_{k−1} − t_{k−2})/h`.
+    #[inline]
+    pub(crate) fn newton(w: [Vec3<T>; 4], count: u8, r1: T, r2: T) -> Self {
+        let [w0, w1, w2, w3] = w;
+        let d1 = w3 - w2;
+        let (d2, d3) = match count {
+            4 => {
+                let d12 = (w2 - w1) * (T::ONE / r1);
+                let d01 = (w1 - w0) * (T::ONE / r2);
+                let d2 = (d1 - d12) * (T::ONE / (T::ONE + r1));
+                let d012 = (d12 - d01) * (T::ONE / (r1 + r2));
+                (d2, (d2 - d012) * (T::ONE / (T::ONE + r1 + r2)))
+            }
+            3 => {
+                let d12 = (w2 - w1) * (T::ONE / r1);
+                ((d1 - d12) * (T::ONE / (T::ONE + r1)), Vec3::ZERO)
+            }
+            _ => (Vec3::ZERO, Vec3::ZERO),
+        };
+        HistoryRate::Newton {
+            ends: [w2, w3],
+            d2,
+            d3,
+            r: r1,
+        }
+    }
+
+    /// Lagrange weights at c for the equally spaced nodes (−2, −1, 0, 1; the unused ones zero).
     #[inline(always)]
-    fn weights(&self, c: f64) -> [f64; 4] {
-        match self.count {
+    fn weights(count: u8, c: f64) -> [f64; 4] {
+        match count {
             4 => [
                 -(c + 1.0) * c * (c - 1.0) / 6.0,
                 (c + 2.0) * c * (c - 1.0) / 2.0,
@@ -140,9 +186,9 @@ impl<T: Real> HistoryRate<T> {
     }
 
     #[inline(always)]
-    fn combine(&self, k: [f64; 4]) -> Vec3<T> {
+    fn combine(w: &[Vec3<T>; 4], k: [f64; 4]) -> Vec3<T> {
         let mut s = Vec3::ZERO;
-        for (w, &ki) in self.w.iter().zip(&k) {
+        for (w, &ki) in w.iter().zip(&k) {
             if ki != 0.0 {
                 s += *w * T::from_f64(ki);
             }
@@ -154,39 +200,83 @@ impl<T: Real> HistoryRate<T> {
 impl<T: Real> Segment<T> for HistoryRate<T> {
     #[inline(always)]
     fn rate_at(&self, c: f64) -> Vec3<T> {
-        if c == 0.0 {
-            self.w[2]
-        } else if c == 1.0 {
-            self.w[3]
-        } else {
-            self.combine(self.weights(c))
+        match self {
+            HistoryRate::Uniform { w, count } => {
+                if c == 0.0 {
+                    w[2]
+                } else if c == 1.0 {
+                    w[3]
+                } else {
+                    Self::combine(w, Self::weights(*count, c))
+                }
+            }
+            HistoryRate::Newton { ends, d2, d3, r } => {
+                let [w2, w3] = *ends;
+                let cc = T::from_f64(c);
+                let b = T::from_f64(c * (c - 1.0));
+                w2 + (w3 - w2) * cc + *d2 * b + *d3 * (b * (cc + *r))
+            }
         }
     }
-    /// `∫₀¹` of the Lagrange basis: cubic (1, −5, 19, 9)/24 (Adams–Moulton); quadratic (−1, 8, 5)/12;
-    /// linear (1, 1)/2.
+    /// `½∫ω dt` written on the differences of the samples, so a constant rate integrates exactly:
+    /// cubic `ω_k + (9Δ₃ + 4Δ₂ − Δ₁)/24` (Adams–Moulton's (1, −5, 19, 9)/24), quadratic
+    /// `ω_k + (5Δ₃ + Δ₂)/12`, linear `(ω_k + ω_{k+1})/2`, with `Δ₃ = ω_{k+1} − ω_k`, `Δ₂ = ω_k − ω_{k−1}`,
+    /// `Δ₁ = ω_{k−1} − ω_{k−2}`. Newton form: `∫₀¹ p = ω_k + Δ₃/2 − d₂/6 − d₃(1/12 + r/6)`.
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
-        let integral = match self.count {
-            4 => [1.0 / 24.0, -5.0 / 24.0, 19.0 / 24.0, 9.0 / 24.0],
-            3 => [0.0, -1.0 / 12.0, 8.0 / 12.0, 5.0 / 12.0],
-            _ => [0.0, 0.0, 0.5, 0.5],
-        };
-        self.combine(integral) * hh
+        match self {
+            HistoryRate::Uniform { w, count } => {
+                let [w0, w1, w2, w3] = *w;
+                let d3 = w3 - w2;
+                let mean = match count {
+                    4 => {
+                        let corr = d3 * T::from_f64(9.0) + (w2 - w1) * T::from_f64(4.0) - (w1 - w0);
+                        w2 + corr * T::from_f64(1.0 / 24.0)
+                    }
+                    3 => w2 + (d3 * T::from_f64(5.0) + (w2 - w1)) * T::from_f64(1.0 / 12.0),
+                    _ => return (w2 + w3) * (hh * T::HALF),
+                };
+                mean * hh
+            }
+            HistoryRate::Newton { ends, d2, d3, r } => {
+                let [w2, w3] = *ends;
+                let k3 = T::from_f64(1.0 / 12.0) + *r * T::from_f64(1.0 / 6.0);
+                let mean = w2 + (w3 - w2) * T::HALF - *d2 * T::from_f64(1.0 / 6.0) - *d3 * k3;
+                mean * hh
+            }
+        }
     }
-    /// `ω(½) × (ω_{k+1} − ω_k)`, ω(½) from the interpolant; the difference is `ω'(½)` to O(h³).
+    /// `ω(½) × (ω_{k+1} − ω_k)`: uniform, ω(½) from the interpolant; Newton, ω(½) ≈ (ω_k + ω_{k+1})/2,
+    /// which makes it `ω_k × ω_{k+1}` (the O(h²) difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is
+    /// `ω'(½)` to O(h³).
     #[inline(always)]
     fn rate_commutator(&self) -> Option<Vec3<T>> {
-        let mid = self.combine(self.weights(0.5));
-        Some(mid.cross(self.w[3] - self.w[2]))
+        match self {
+            HistoryRate::Uniform { w, count } => {
+                let mid = Self::combine(w, Self::weights(*count, 0.5));
+                Some(mid.cross(w[3] - w[2]))
+            }
+            HistoryRate::Newton { ends, .. } => Some(ends[0].cross(ends[1])),
+        }
     }
     #[inline(always)]
     fn max_step_angle_squared(&self, h: T) -> T {
+        let (w, n) = match self {
+            HistoryRate::Uniform { w, .. } => (*w, 4),
+            // The interpolant between the two end samples; the earlier samples were checked in their
+            // own steps.
+            HistoryRate::Newton { ends, .. } => ([ends[0], ends[1], ends[1], ends[1]], 2),
+        };
         // Unused leading entries are zero, so the maximum over all four is the maximum over the samples.
         let mut m = T::ZERO;
-        for w in &self.w {
+        for w in w.iter().take(n.max(2)) {
             m = m.max((*w * h).norm_squared());
         }
-        m
+        if n == 4 {
+            m
+        } else {
+            m.max((w[0] * h).norm_squared())
+        }
     }
 }
 
