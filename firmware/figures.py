@@ -86,7 +86,7 @@ def run_bench():
         m = re.match(r"bench (\S+) (\S+) (\S+) (Plain|Kahan) ([\d.]+)$", line)
         if m:
             rows[m.group(1, 2, 3, 4)] = float(m.group(5))
-        q = re.match(r"bench quickstart attitude_from per-sample ([\d.]+) \(samples=(\d+), fixed=(\d+)\)", line)
+        q = re.match(r"bench quickstart on_fifo per-sample ([\d.]+) \(samples=(\d+), fixed=(\d+)\)", line)
         if q:
             quick = (float(q.group(1)), int(q.group(2)), int(q.group(3)))
     if "bench done" not in out or quick is None:
@@ -187,9 +187,9 @@ def document(bench, quick, flash, stack, tools):
     per, n, fixed = quick
     o.append("### The recommended configuration and the quick start\n")
     o.append(f"- ExpMap + History + FirstOrder, Plain: **{rec:.1f}** instructions per step.")
-    o.append(f"- The README's quick start (`attitude_from`, the same configuration plus its refused-sample "
-             f"bookkeeping and the iterator): **{per:.1f}** instructions per sample (over {n} samples; "
-             f"{fixed} instructions once per call for construction and return).\n")
+    o.append(f"- The README's quick start (`Attitude::on_fifo`: raw counts → axis remap → bias estimator → "
+             f"`push_burst` with the exact period, the configuration above): **{per:.1f}** instructions per "
+             f"sample (over {n} samples in FIFO bursts of 32; {fixed} instructions for the call overhead).\n")
 
     o.append("## Flash per scheme\n")
     o.append("Section sizes (bytes, `llvm-size -A`) of the `minimal` program on thumbv7em-none-eabihf: one "

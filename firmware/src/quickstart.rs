@@ -2,28 +2,57 @@
 // exactly this code). Compiled into the M4F firmware (`quickstart` program) and into the host test, so the
 // two run the same f32 arithmetic.
 // quick start: begin
+use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
 use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
 use quatprop::{Error, GyroSample, Propagator, Quat};
 
-/// The gyro's sample period (s): 1 kHz.
-const DT: f32 = 1.0e-3;
+/// Samples the gyro FIFO holds at most.
+const FIFO_DEPTH: usize = 32;
 
-/// Integrates body-frame gyro samples (rad/s, one every `DT`) into the attitude (body to reference).
-/// Returns the attitude and how many samples were refused.
-pub fn attitude_from(
-    samples: impl IntoIterator<Item = GyroSample<f32>>,
-) -> Result<(Quat<f32>, u32), Error> {
-    let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
-    let mut dt = 0.0; // time since the last accepted sample
-    let mut refused = 0;
-    for sample in samples {
-        dt += DT;
-        match p.push(sample, dt) {
-            Ok(()) => dt = 0.0,
-            // The state is unchanged; the next sample covers this interval too.
-            Err(_) => refused += 1,
+/// One attitude, fed from a gyro's FIFO: raw counts → body axes → bias removed → integrated.
+pub struct Attitude {
+    scale: CountScale<f32>,
+    mounting: AxisRemap,
+    bias: BiasEstimator<f32>,
+    period: FixedPeriod<f32>,
+    propagator: Propagator<f32, ExpMap, History<f32>, FirstOrder>,
+    refused: u32,
+}
+
+impl Attitude {
+    /// A ±2000 °/s, 16-bit gyro at 1 kHz, mounted turned 90° about z (body x = sensor y).
+    pub fn new() -> Result<Self, Error> {
+        Ok(Self {
+            scale: CountScale::full_scale_dps(2000.0),
+            mounting: AxisRemap::PyNxPz,
+            // Learns the bias over 1 s windows while every axis stays within 0.05 rad/s (2.9 °/s).
+            bias: BiasEstimator::new(1000, 0.05)?,
+            period: FixedPeriod::new(1.0e-3)?,
+            propagator: Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?,
+            refused: 0,
+        })
+    }
+
+    /// Takes one FIFO burst of raw counts `[x, y, z]` (sensor axes), one sample per period.
+    pub fn on_fifo(&mut self, fifo: &[[i16; 3]]) {
+        let mut body = [GyroSample::default(); FIFO_DEPTH];
+        let n = fifo.len().min(FIFO_DEPTH);
+        for (slot, &counts) in body.iter_mut().zip(fifo) {
+            let sample = self.mounting.apply(self.scale.sample(counts));
+            // Counts are always finite, so the estimator never refuses them.
+            *slot = self.bias.update(sample).unwrap_or(sample);
+        }
+        // A refused sample stops the burst with the state as it was; its interval carries into the next.
+        let mut rest = body.get(..n).unwrap_or(&[]);
+        while let Err(refused) = self.propagator.push_burst(rest, &mut self.period) {
+            self.refused += 1;
+            rest = rest.get(refused.index + 1..).unwrap_or(&[]);
         }
     }
-    Ok((p.attitude(), refused))
+
+    /// The attitude (body to reference) and how many samples were refused.
+    pub fn attitude(&self) -> (Quat<f32>, u32) {
+        (self.propagator.attitude(), self.refused)
+    }
 }
 // quick start: end

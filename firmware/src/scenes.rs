@@ -313,24 +313,35 @@ pub fn run(scene: Scene, config: Config, steps: u32) -> Outcome {
     }
 }
 
-/// Samples in the quick start's stream.
-pub const QUICKSTART_SAMPLES: u32 = 10_000;
-/// Index of the one NaN sample (the refused-sample path).
-pub const QUICKSTART_NAN_AT: u32 = QUICKSTART_SAMPLES / 2;
+/// FIFO bursts in the quick start's stream, and samples per burst (1 kHz).
+pub const QUICKSTART_BURSTS: u32 = 400;
+/// Samples per FIFO burst.
+pub const QUICKSTART_BURST: usize = 25;
+/// Bursts at the start during which the sensor is still (bias only).
+pub const QUICKSTART_STILL_BURSTS: u32 = 80;
 
-/// The quick start's input: [`QUICKSTART_SAMPLES`] coning samples at 1 kHz (the rotation recurrence above),
-/// sample [`QUICKSTART_NAN_AT`] with a NaN x rate.
-pub fn quickstart_samples() -> impl Iterator<Item = GyroSample<f32>> {
+/// The quick start's input: [`QUICKSTART_BURSTS`] bursts of raw 16-bit counts from a ±2000 °/s gyro at
+/// 1 kHz: 2 s still with a bias of (12, −3, 7) counts, then coning (the rotation recurrence above) in
+/// sensor axes, truncated to counts in f32 arithmetic.
+pub fn quickstart_fifo() -> impl Iterator<Item = [[i16; 3]; QUICKSTART_BURST]> {
+    // Counts per rad/s at ±2000 °/s: 32768 / (2000 π / 180).
+    const COUNTS_PER_RAD_S: f32 = 938.734_6;
+    const BIAS: [i16; 3] = [12, -3, 7];
     let mut cone = ConingRates::new();
-    (0..QUICKSTART_SAMPLES).map(move |i| {
-        if i > 0 {
-            cone.advance();
+    (0..QUICKSTART_BURSTS).map(move |k| {
+        let mut burst = [BIAS; QUICKSTART_BURST];
+        if k >= QUICKSTART_STILL_BURSTS {
+            for slot in burst.iter_mut() {
+                cone.advance();
+                let w = cone.rate();
+                // Body x = sensor y, body y = −sensor x (AxisRemap::PyNxPz): sensor = (−body y, body x, z).
+                let sensor = [-w.y, w.x, w.z];
+                for (c, (&r, b)) in slot.iter_mut().zip(sensor.iter().zip(BIAS)) {
+                    *c = (r * COUNTS_PER_RAD_S) as i16 + b;
+                }
+            }
         }
-        let mut rate = cone.rate();
-        if i == QUICKSTART_NAN_AT {
-            rate.x = f32::NAN;
-        }
-        GyroSample::new(rate)
+        burst
     })
 }
 

@@ -1,7 +1,7 @@
 //! Instructions per step on the Cortex-M4F, counted with SysTick under QEMU `-icount shift=10`, for every
 //! input model (Hold, Linear, History, TwiceRate, GaussPoints, DeltaAngles with TwoSample) × scheme (ExpMap,
 //! Magnus4, Cf4, Rk4) × stabilizer (FirstOrder, Normalize) × accumulator (Plain, Kahan) in f32, and the
-//! README quick start's `attitude_from` per sample.
+//! README quick start's `Attitude::on_fifo` per sample (raw counts in, a FIFO burst of 32).
 //!
 //! Each figure is (instructions of a loop of pushes − instructions of the same loop without the push) per
 //! step of 1 ms: 64 steps, i.e. 64 pushes for one-sample-per-step models and 128 for TwiceRate, GaussPoints
@@ -20,11 +20,11 @@ use quatprop::input::coning::TwoSample;
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
 use quatprop::scheme::{Cf4, ExpMap, Magnus4, Rk4, Scheme};
 use quatprop::stabilize::{FirstOrder, Normalize, Stabilizer};
-use quatprop::{GyroSample, Propagator, Quat, Vec3};
+use quatprop::{Propagator, Quat, Vec3};
 use quatprop_firmware::configs::Input;
 use quatprop_firmware::exit::{exit, fail};
 use quatprop_firmware::icount::Counter;
-use quatprop_firmware::quickstart::attitude_from;
+use quatprop_firmware::quickstart::Attitude;
 
 /// Steps per measured loop.
 const STEPS: u32 = 64;
@@ -129,15 +129,21 @@ fn schemes<I: Input>(c: &Counter, ok: &mut bool, i: I) {
     stabilizers(c, ok, Rk4, i, "Rk4");
 }
 
-/// Samples in the quick-start measurement.
+/// Samples in the quick-start measurement: 8 FIFO bursts of 32.
 const QS_SAMPLES: usize = 256;
 
+/// Instructions of `bursts` calls of the quick start's `on_fifo` with 32 raw samples each.
 #[inline(never)]
-fn quickstart(c: &Counter, samples: &[GyroSample<f32>]) -> (u32, bool) {
+fn quickstart(c: &Counter, fifo: &[[i16; 3]; 32], bursts: usize) -> (u32, bool) {
+    let Ok(mut attitude) = Attitude::new() else {
+        return (0, false);
+    };
     let t0 = c.now();
-    let r = black_box(attitude_from(black_box(samples).iter().copied()));
+    for _ in 0..bursts {
+        attitude.on_fifo(black_box(fifo));
+    }
     let n = Counter::instructions(Counter::ticks(t0, c.now()));
-    (n, matches!(r, Ok((_, 0))))
+    (n, black_box(attitude.attitude()).1 == 0)
 }
 
 #[entry]
@@ -156,16 +162,17 @@ fn main() -> ! {
 
     // The quick start: (its cost on QS_SAMPLES samples − its cost on none) per sample.
     let w = rates();
-    let mut samples = [GyroSample::new(Vec3::ZERO); QS_SAMPLES];
-    for (i, s) in samples.iter_mut().enumerate() {
-        *s = GyroSample::new(w[i & 7]);
+    let mut fifo = [[0i16; 3]; 32];
+    for (i, s) in fifo.iter_mut().enumerate() {
+        let r = w[i & 7];
+        *s = [r.x, r.y, r.z].map(|v| (v * 938.734_6) as i16); // counts at ±2000 °/s
     }
-    let (full, accepted) = quickstart(&c, &samples);
-    let (empty, _) = quickstart(&c, &[]);
+    let (full, accepted) = quickstart(&c, &fifo, QS_SAMPLES / 32);
+    let (empty, _) = quickstart(&c, &fifo, 0);
     ok &= accepted;
     let per = (u64::from(full.saturating_sub(empty)) * 100 / QS_SAMPLES as u64) as u32;
     defmt::println!(
-        "bench quickstart attitude_from per-sample {=u32}.{=u32:02} (samples={=usize}, fixed={=u32})",
+        "bench quickstart on_fifo per-sample {=u32}.{=u32:02} (samples={=usize}, fixed={=u32})",
         per / 100,
         per % 100,
         QS_SAMPLES,

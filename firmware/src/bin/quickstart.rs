@@ -1,23 +1,27 @@
 //! The README's quick start on the board: `firmware/src/quickstart.rs` (the README's code, verbatim) fed the
-//! deterministic coning stream of `scenes::quickstart_samples` (10⁴ samples at 1 kHz, one NaN in the middle,
-//! so the refused-sample path runs). Prints the attitude's bits and the refused count;
+//! deterministic raw-count FIFO stream of `scenes::quickstart_fifo` (400 bursts of 25 samples at 1 kHz: 2 s
+//! still with a bias, then coning). Prints the attitude's bits and the refused count;
 //! `firmware/expected/quickstart.txt` holds what the host computes from the same code and stream.
 #![no_std]
 #![no_main]
 
 use cortex_m_rt::entry;
 use quatprop_firmware::exit::{exit, fail};
-use quatprop_firmware::quickstart::attitude_from;
-use quatprop_firmware::scenes::{bits, quickstart_samples, QUICKSTART_SAMPLES};
+use quatprop_firmware::quickstart::Attitude;
+use quatprop_firmware::scenes::{bits, quickstart_fifo, QUICKSTART_BURST, QUICKSTART_BURSTS};
 
 #[entry]
 fn main() -> ! {
-    let Ok((q, refused)) = attitude_from(quickstart_samples()) else {
+    let Ok(mut attitude) = Attitude::new() else {
         fail("quick start refused to start")
     };
+    for burst in quickstart_fifo() {
+        attitude.on_fifo(&burst);
+    }
+    let (q, refused) = attitude.attitude();
     defmt::println!(
         "quickstart samples={=u32} {=u32:08x} {=u32:08x} {=u32:08x} {=u32:08x} refused={=u32}",
-        QUICKSTART_SAMPLES,
+        QUICKSTART_BURSTS * QUICKSTART_BURST as u32,
         bits(q.w),
         bits(q.x),
         bits(q.y),
@@ -25,5 +29,5 @@ fn main() -> ! {
         refused
     );
     defmt::println!("quickstart done");
-    exit(refused == 1)
+    exit(refused == 0)
 }
