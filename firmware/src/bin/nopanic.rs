@@ -8,7 +8,8 @@
 //! Built, not run:
 //! `cargo build --release --target <triple> --no-default-features --features panic-never --bin nopanic`.
 //! For the micro:bit's 256 KB flash, add one `nopanic-<input>` feature per image (none: every input model)
-//! and `nopanic-plain` or `nopanic-kahan` (neither: both accumulators). `nopanic-selftest` adds a reachable
+//! and `nopanic-plain` or `nopanic-kahan` (neither: both accumulators), and if that is still too large,
+//! `nopanic-schemes` or `nopanic-baumgarte` (neither: both scheme groups). `nopanic-selftest` adds a reachable
 //! `unwrap()` on `None`: that image must fail to link.
 #![no_std]
 #![no_main]
@@ -28,6 +29,9 @@ struct Exercise;
 impl Visitor for Exercise {
     const PLAIN: bool = !cfg!(feature = "nopanic-kahan") || cfg!(feature = "nopanic-plain");
     const KAHAN: bool = !cfg!(feature = "nopanic-plain") || cfg!(feature = "nopanic-kahan");
+    const SCHEMES: bool = !cfg!(feature = "nopanic-baumgarte") || cfg!(feature = "nopanic-schemes");
+    const BAUMGARTE: bool =
+        !cfg!(feature = "nopanic-schemes") || cfg!(feature = "nopanic-baumgarte");
 
     fn visit<S, I, Z, A>(&mut self, scheme: S, input: I, stabilizer: Z, accumulator: A, _: Label)
     where
