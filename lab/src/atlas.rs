@@ -123,11 +123,11 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
             "stability_norm",
             "Per-step norm change | |R(ix)|^2 - 1 | against the step angle",
             Axis {
-                label: "step angle H|w| (rad)",
+                label: "step angle H|ω| (rad)",
                 log: true,
             },
             Axis {
-                label: "| |q1|^2 - 1 |",
+                label: "||q₁|² − 1| after one step (dimensionless)",
                 log: true,
             },
             &norm_series,
@@ -139,11 +139,11 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
             "stability_error",
             "Attitude error of one step against the step angle",
             Axis {
-                label: "step angle H|w| (rad)",
+                label: "step angle H|ω| (rad)",
                 log: true,
             },
             Axis {
-                label: "angle error (rad)",
+                label: "attitude error of one step (rad)",
                 log: true,
             },
             &err_series,

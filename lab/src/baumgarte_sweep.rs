@@ -313,19 +313,19 @@ pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
     let series: Vec<Series> = rows
         .iter()
         .filter(|r| r.hw == 0.1)
-        .map(|r| Series::line(format!("{} (H|w| = 0.1)", r.name), r.curve.clone()))
+        .map(|r| Series::line(format!("{} (H|ω| = 0.1 rad)", r.name), r.curve.clone()))
         .collect();
     ctx.plot(|dir| {
         plot(
             dir,
             "baumgarte_sweep",
-            "Baumgarte in propagation: |N| after the run against k (|w| = 1 rad/s, H = 0.1 s)",
+            "Baumgarte in propagation: |N| after the run against k (|ω| = 1 rad/s, H = 0.1 s)",
             Axis {
                 label: "k (1/s)",
                 log: true,
             },
             Axis {
-                label: "|N| after the run",
+                label: "|N| = ||q|² − 1| after the run (dimensionless)",
                 log: true,
             },
             &series,

@@ -365,6 +365,9 @@ fn fusion_c_check(s: &Stream) -> FusionCRow {
     }
 }
 
+/// (stream key, estimator name, points (t, |b̂ − b| in °/s)).
+type Curve = (String, String, Vec<(f64, f64)>);
+
 /// Metrics of one estimator on one stream.
 struct Outcome {
     convergence_s: f64,
@@ -471,7 +474,7 @@ pub fn bias_study(ctx: &mut Ctx, quick: bool) -> String {
     let mut series_rows = Vec::new();
     let mut conv = Vec::new();
     let mut rot = Vec::new();
-    let mut curves: Vec<(String, String, Vec<(f64, f64)>)> = Vec::new();
+    let mut curves: Vec<Curve> = Vec::new();
     for s in &streams {
         let mut fusion: Option<(f64, f64)> = None;
         for e in Estimator::ALL {

@@ -94,7 +94,7 @@ pub struct Sweep {
 
 fn parse_steps(s: &str) -> Result<u64, String> {
     let n: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    if n.is_finite() && n >= 1e3 && n <= 1e12 {
+    if (1e3..=1e12).contains(&n) {
         Ok(n.round() as u64)
     } else {
         Err("a step count from 1e3 to 1e12".into())

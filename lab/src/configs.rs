@@ -48,9 +48,9 @@ pub enum Input {
     Hold,
     /// `input::Linear`: linear between the two samples bracketing the step.
     Linear,
-    /// `input::History`: the cubic through the last four samples, fourth order, no latency. The samples must
-    /// be equally spaced: whenever dt changes (a dropped sample's gap, timing jitter) the model restarts at
-    /// the last sample and bridges the interval with a linear step over its true length.
+    /// `input::History`: the cubic through the last four samples at their true times, fourth order, no
+    /// latency, under jitter too; only a gap (a dt more than 1.5 times the previous one, or less than its
+    /// inverse: a dropped sample) restarts it at the last sample, bridging that interval linearly.
     History,
     /// `input::TwiceRate`: one step per two sample intervals with the quadratic through three samples (the
     /// same samples, half the steps).
@@ -214,7 +214,7 @@ impl Config {
                 stab,
                 input,
                 compensated,
-            } => build_quatprop(method, stab, input, compensated, q0, nominal_dt)
+            } => build_quatprop(method, stab, input, compensated, q0)
                 .map_err(|e| format!("{}: {e}", self.label())),
             Config::Peer(p) => T::peer(p, q0, nominal_dt).ok_or_else(|| {
                 format!(
@@ -249,7 +249,7 @@ impl LabReal for f32 {
         Some(match p {
             Peer::Fusion => Box::new(FusionRun { q: q0, prev: false }),
             Peer::GlamScaledAxis => Box::new(GlamRun {
-                q: glam::Quat::from_xyzw(q0.x, q0.y, q0.z, q0.w),
+                q: glam::Quat::from(mint::Quaternion::from(q0)),
                 prev: None,
             }),
             _ => nalgebra_peer(p, q0, nominal_dt)?,
@@ -262,7 +262,7 @@ impl LabReal for f64 {
         Some(match p {
             Peer::Fusion => return None,
             Peer::GlamScaledAxis => Box::new(DGlamRun {
-                q: glam::DQuat::from_xyzw(q0.x, q0.y, q0.z, q0.w),
+                q: glam::DQuat::from(mint::Quaternion::from(q0)),
                 prev: None,
             }),
             _ => nalgebra_peer(p, q0, nominal_dt)?,
@@ -276,11 +276,8 @@ impl LabReal for f64 {
 trait LabInput<T: Real>: InputModel<T, Sample = GyroSample<T>> + 'static {
     /// The model before any sample.
     fn fresh() -> Self;
-    /// The stream's first sample only starts it and is not pushed: [`Hold`] steps on every push, and the
-    /// first sample of a stream has no interval before it.
-    const SKIP_FIRST: bool = false;
     /// After a refused step the stream continues from the refused sample (the interval is dropped and
-    /// counted, the lab's policy since 0.1): the model is restarted and the sample pushed as a start. The
+    /// counted, the lab's policy since 0.1): the sample starts the model afresh (`Propagator::start`). The
     /// library leaves a refused sample's model untouched, which for [`Linear`] and [`TwiceRate`] would make
     /// the next step span the refused interval too. [`History`] keeps its 0.1 behaviour unchanged (the
     /// refused sample is not part of the history).
@@ -291,7 +288,6 @@ impl<T: Real> LabInput<T> for Hold {
     fn fresh() -> Self {
         Hold
     }
-    const SKIP_FIRST: bool = true;
 }
 impl<T: Real> LabInput<T> for Linear<T> {
     fn fresh() -> Self {
@@ -315,8 +311,6 @@ struct QuatpropRun<T: Real, S: Scheme<T>, I: LabInput<T>, Z: Stabilizer, A: Accu
     p: Propagator<T, S, I, Z, A>,
     /// The first sample of the stream has been seen.
     started: bool,
-    /// The `dt` passed with a sample that only starts the input model (any valid value: it is not used).
-    start_dt: T,
     refused: u64,
     first_error: Option<Error>,
 }
@@ -334,22 +328,19 @@ impl<T: Real, S: Scheme<T>, I: LabInput<T>, Z: Stabilizer, A: Accumulator<T>> In
             if let Some((s0, tail)) = samples.split_first() {
                 self.started = true;
                 rest = tail;
-                if !I::SKIP_FIRST {
-                    // Only starts the model; the first sample's dt is meaningless (0 in sensor streams).
-                    if let Err(e) = p.push(GyroSample::new(s0.w), self.start_dt) {
-                        refuse(&mut refused, &mut first, e);
-                    }
+                // The stream's first sample has no interval before it (its dt is meaningless, 0 in sensor
+                // streams): it only starts the model (Hold keeps nothing of it).
+                if let Err(e) = p.start(GyroSample::new(s0.w)) {
+                    refuse(&mut refused, &mut first, e);
                 }
             }
         }
-        let start_dt = self.start_dt;
         for s in rest {
             if let Err(e) = p.push(GyroSample::new(s.w), s.dt) {
                 // Cold: only refused steps reach the body.
                 refuse(&mut refused, &mut first, e);
                 if I::RESTART_ON_REFUSAL {
-                    p.restart_input();
-                    let _ = p.push(GyroSample::new(s.w), start_dt);
+                    let _ = p.start(GyroSample::new(s.w));
                 }
             }
         }
@@ -379,14 +370,12 @@ fn boxed<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'stati
     s: S,
     z: Z,
     compensated: bool,
-    nominal_dt: T,
 ) -> Result<Box<dyn Integrator<T>>, Error> {
     let p = Propagator::new(q0, s, I::fresh(), z)?;
     Ok(if compensated {
         Box::new(QuatpropRun {
             p: p.with_accumulator(Kahan::new()),
             started: false,
-            start_dt: nominal_dt,
             refused: 0,
             first_error: None,
         })
@@ -394,7 +383,6 @@ fn boxed<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'stati
         Box::new(QuatpropRun {
             p,
             started: false,
-            start_dt: nominal_dt,
             refused: 0,
             first_error: None,
         })
@@ -407,15 +395,14 @@ fn build_quatprop<T: Real>(
     input: Input,
     compensated: bool,
     q0: Quat<T>,
-    nominal_dt: T,
 ) -> Result<Box<dyn Integrator<T>>, String> {
     macro_rules! with_input {
         ($s:expr, $z:expr) => {
             match input {
-                Input::Hold => boxed::<T, _, Hold, _>(q0, $s, $z, compensated, nominal_dt),
-                Input::Linear => boxed::<T, _, Linear<T>, _>(q0, $s, $z, compensated, nominal_dt),
-                Input::History => boxed::<T, _, History<T>, _>(q0, $s, $z, compensated, nominal_dt),
-                Input::Mid => boxed::<T, _, TwiceRate<T>, _>(q0, $s, $z, compensated, nominal_dt),
+                Input::Hold => boxed::<T, _, Hold, _>(q0, $s, $z, compensated),
+                Input::Linear => boxed::<T, _, Linear<T>, _>(q0, $s, $z, compensated),
+                Input::History => boxed::<T, _, History<T>, _>(q0, $s, $z, compensated),
+                Input::Mid => boxed::<T, _, TwiceRate<T>, _>(q0, $s, $z, compensated),
             }
             .map_err(|e| format!("{e:?}"))
         };
@@ -493,14 +480,14 @@ impl Integrator<f32> for GlamRun {
         for s in samples {
             if let Some(w0) = self.prev {
                 let v = (w0 + s.w) * (0.5 * s.dt);
-                self.q = (self.q * glam::Quat::from_scaled_axis(glam::Vec3::new(v.x, v.y, v.z)))
-                    .normalize();
+                let v = glam::Vec3::from(mint::Vector3::from(v));
+                self.q = (self.q * glam::Quat::from_scaled_axis(v)).normalize();
             }
             self.prev = Some(s.w);
         }
     }
     fn attitude(&self) -> Quat<f32> {
-        Quat::new(self.q.w, self.q.x, self.q.y, self.q.z)
+        Quat::from_mint(self.q)
     }
 }
 
@@ -513,27 +500,29 @@ impl Integrator<f64> for DGlamRun {
         for s in samples {
             if let Some(w0) = self.prev {
                 let v = (w0 + s.w) * (0.5 * s.dt);
-                self.q = (self.q * glam::DQuat::from_scaled_axis(glam::DVec3::new(v.x, v.y, v.z)))
-                    .normalize();
+                let v = glam::DVec3::from(mint::Vector3::from(v));
+                self.q = (self.q * glam::DQuat::from_scaled_axis(v)).normalize();
             }
             self.prev = Some(s.w);
         }
     }
     fn attitude(&self) -> Quat<f64> {
-        Quat::new(self.q.w, self.q.x, self.q.y, self.q.z)
+        Quat::from_mint(self.q)
     }
 }
 
 type NaQuat<T> = nalgebra::UnitQuaternion<T>;
 
+// The conversions go through `mint` (quatprop's `mint` feature, nalgebra's `convert-mint`): component
+// order and the scalar's place are the crates' business, not the lab's.
 fn to_na<T: LabReal>(q: Quat<T>) -> NaQuat<T> {
-    NaQuat::new_normalize(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z))
+    NaQuat::new_normalize(nalgebra::Quaternion::from(mint::Quaternion::from(q)))
 }
 fn from_na<T: LabReal>(q: &NaQuat<T>) -> Quat<T> {
-    Quat::new(q.w, q.i, q.j, q.k)
+    Quat::from_mint(*q.quaternion())
 }
 fn na_vec<T: LabReal>(v: Vec3<T>) -> nalgebra::Vector3<T> {
-    nalgebra::Vector3::new(v.x, v.y, v.z)
+    nalgebra::Vector3::from(mint::Vector3::from(v))
 }
 
 fn nalgebra_peer<T: LabReal>(
@@ -712,6 +701,20 @@ mod tests {
             r.refused().1,
             Some(Error::StepAngleBeyondStability { .. })
         ));
+    }
+
+    /// The mint conversions keep every component in its place (scalar first here, last in glam/nalgebra).
+    #[test]
+    fn mint_conversions_round_trip_through_the_peers() {
+        let q = Quat::new(0.5f32, -0.5, 0.25, 0.8);
+        let g = glam::Quat::from(mint::Quaternion::from(q));
+        assert_eq!((g.w, g.x, g.y, g.z), (q.w, q.x, q.y, q.z));
+        assert_eq!(Quat::from_mint(g), q);
+        let n = nalgebra::Quaternion::from(mint::Quaternion::from(q));
+        assert_eq!((n.w, n.i, n.j, n.k), (q.w, q.x, q.y, q.z));
+        assert_eq!(Quat::from_mint(n), q);
+        let v = Vec3::new(1.0f64, 2.0, 3.0);
+        assert_eq!(na_vec(v), nalgebra::Vector3::new(1.0, 2.0, 3.0));
     }
 
     /// Baumgarte exists for the Runge–Kutta schemes only.

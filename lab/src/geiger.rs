@@ -111,18 +111,18 @@ pub fn figure1(ctx: &mut Ctx) -> String {
         plot(
             dir,
             "geiger_fig1",
-            "Seed Fig. 1: norm error N(t), RK4, H|w| = 2pi/30",
+            "Seed Fig. 1: norm error N(t), RK4, H|ω| = 2π/30",
             Axis {
                 label: "t (s)",
                 log: false,
             },
             Axis {
-                label: "-N = 1 - |q|^2 (|N| for Normalize)",
+                label: "−N = 1 − |q|² (|N| for Normalize; dimensionless)",
                 log: true,
             },
             &[
                 Series::line("RK4, no stabilization", a),
-                Series::line("closed form (1-beta)^j - 1", b).dashed(),
+                Series::line("closed form (1 − β)^j − 1", b).dashed(),
                 Series::line("RK4 + Baumgarte k = 0.5", c),
                 Series::line("RK4 + Normalize (|N|)", d),
             ],
@@ -246,7 +246,7 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
             library_refuses_above_k: Baumgarte::new(Rk4, 0.0).expect("k = 0").gain_step_limit()
                 / (4.0 * hw),
         });
-        series.push(Series::line(format!("H|w| = {hw:.3}"), pts));
+        series.push(Series::line(format!("H|ω| = {hw:.3} rad"), pts));
     }
     ctx.rows(&rows);
     out += &ctx.table(&gains);
@@ -254,13 +254,13 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
         plot(
             dir,
             "geiger_fig2",
-            "Seed Fig. 2: |N_inf| against Baumgarte k (RK4, |w| = 1 rad/s)",
+            "Seed Fig. 2: |N∞| against Baumgarte k (RK4, |ω| = 1 rad/s)",
             Axis {
                 label: "k (1/s)",
                 log: true,
             },
             Axis {
-                label: "|N_inf|",
+                label: "|N∞| (dimensionless)",
                 log: true,
             },
             &series,

@@ -1,4 +1,9 @@
 //! Minimal plotting: line and scatter series on linear or log axes, written as SVG and rendered to PNG.
+//!
+//! Kept by hand rather than moved to `plotters`: the report needs log axes, dashed series, a legend
+//! outside the data and byte-stable SVG (a regenerated report diffs only where numbers changed); this
+//! module does that in 250 lines with no font or backend dependency of its own, and `resvg` (already
+//! here for the PNGs) renders the same SVG the Markdown links. Every axis label carries its unit.
 // The SVG templates are multi-line raw strings that end in a newline; `write!` is what they need.
 #![allow(clippy::write_with_newline)]
 
@@ -78,8 +83,17 @@ pub fn plot(
     y: Axis,
     series: &[Series],
 ) -> std::io::Result<()> {
-    let (w, h) = (1180.0, 560.0);
-    let (l, r, t, b) = (80.0, 420.0, 40.0, 60.0);
+    // The legend sits right of the plot area, never over the data: wide enough for the longest name
+    // (about 7.3 px per character at 13 px), tall enough for every entry.
+    let longest = series
+        .iter()
+        .map(|s| s.name.chars().count())
+        .max()
+        .unwrap_or(0) as f64;
+    let r = (44.0 + 7.3 * longest).max(300.0);
+    let (l, t, b) = (80.0, 40.0, 60.0);
+    let w = 760.0 + l + r;
+    let h = (t + b + 20.0 + 18.0 * series.len() as f64).max(560.0);
     let pts: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter())

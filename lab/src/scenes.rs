@@ -5,9 +5,8 @@ use quatprop::scheme::Scheme;
 use quatprop::stabilize::Stabilizer;
 use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 
-/// The two-point Gauss–Legendre nodes `½ ∓ √3/6` as fractions of a step (quatprop 0.2 keeps its own copy
-/// crate-private; these are the same literals).
-pub const GAUSS_NODES: [f64; 2] = [0.5 - 0.288_675_134_594_812_9, 0.5 + 0.288_675_134_594_812_9];
+/// The two-point Gauss–Legendre nodes `½ ∓ √3/6` as fractions of a step (the library's own constants).
+pub const GAUSS_NODES: [f64; 2] = GaussPoints::<f64>::NODES;
 
 /// One reference step of `h` (s) through a Gauss-point propagator: the rates `rate(c)` at the two nodes
 /// (`c` the fraction of the step), each pushed with dt = h/2; the second push closes the step.

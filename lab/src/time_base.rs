@@ -82,7 +82,7 @@ impl Table for TimeBaseRow {
 fn is_decade(k: u64) -> bool {
     k >= 1_000_000 && {
         let mut d = k;
-        while d % 10 == 0 {
+        while d.is_multiple_of(10) {
             d /= 10;
         }
         d == 1
@@ -121,7 +121,7 @@ pub fn run(tb: TimeBase, total: u64, tick: &mut dyn FnMut()) -> Vec<TimeBaseRow>
             let _ = p.push(GyroSample::new(w), dt);
             sum = sum.add(dd::Dd::from(dt));
             k += 1;
-            if k % 1_000_000 == 0 {
+            if k.is_multiple_of(1_000_000) {
                 tick();
             }
         }
@@ -137,10 +137,16 @@ pub fn run(tb: TimeBase, total: u64, tick: &mut dyn FnMut()) -> Vec<TimeBaseRow>
 }
 
 pub fn time_base(ctx: &mut Ctx, total: u64) -> String {
-    let mut rows = Vec::new();
-    for tb in TimeBase::ALL {
-        rows.extend(run(tb, total, &mut || ctx.tick()));
-    }
+    use rayon::prelude::*;
+    let bar = ctx.progress();
+    // Accuracy only (nothing timed): the three time bases in parallel.
+    let rows: Vec<TimeBaseRow> = TimeBase::ALL
+        .par_iter()
+        .map(|&tb| run(tb, total, &mut || bar.inc(1)))
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect();
     let table = ctx.table(&rows);
     let series: Vec<Series> = TimeBase::ALL
         .iter()

@@ -1008,8 +1008,9 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
         "### Work–precision: coning in f32, one gyro sample per step\n\n![work-precision](work_precision_coning_f32.png)\n\n\
          {}, horizon {horizon} s, gyro rates {rates:?} Hz, every configuration fed the same f32 samples. Host time: \
          median of {} timed runs after a warm-up, this machine (noisy, 2 cores). Peers as crates: `ahrs` 0.8 \
-         (`Madgwick::update_gyro`), `nalgebra` 0.34 (`UnitQuaternion`), `glam` 0.30 (`Quat::from_scaled_axis`); \
-         Fusion (C) from its published formulas (`lab/src/peers.rs`).\n\n{table}\n\
+         (`Madgwick::update_gyro`), `nalgebra` 0.34 (`UnitQuaternion`), `glam` 0.34 (`Quat::from_scaled_axis`), \
+         all converted through `mint`; Fusion (C): its gyroscope update from its published source \
+         (`lab/src/peers.rs`; its FusionOffset runs as the real C code in the bias section).\n\n{table}\n\
          At equal cost, in one run: for each peer at {r} Hz, quatprop's lowest maximum error among configurations \
          and rates that need no more host time per simulated second.\n\n{vs}",
         scene.name(),
