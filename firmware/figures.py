@@ -73,7 +73,9 @@ def cargo(*args):
 
 
 def elf(name):
-    return os.path.join(FW, "target", TARGET, "release", name)
+    # cargo runs in firmware/, so a relative CARGO_TARGET_DIR is relative to it.
+    target_dir = os.path.join(FW, os.environ.get("CARGO_TARGET_DIR") or "target")
+    return os.path.join(target_dir, TARGET, "release", name)
 
 
 # ---------------------------------------------------------------- 1. bench
