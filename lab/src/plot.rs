@@ -90,7 +90,7 @@ pub fn plot(
         .map(|s| s.name.chars().count())
         .max()
         .unwrap_or(0) as f64;
-    let r = (44.0 + 7.3 * longest).max(300.0);
+    let r = (56.0 + 7.3 * longest).max(300.0);
     let (l, t, b) = (80.0, 40.0, 60.0);
     let w = 760.0 + l + r;
     let h = (t + b + 20.0 + 18.0 * series.len() as f64).max(560.0);
@@ -228,14 +228,41 @@ pub fn plot(
                 }
             }
         }
-        let ly = t + 10.0 + 18.0 * i as f64;
+        // The legend entry draws the series as it is drawn: its dash and its marker.
+        let ly = t + 12.0 + 18.0 * i as f64;
+        let (x0, x1) = (w - r + 10.0, w - r + 34.0);
+        let dash = if se.dashed || second_round {
+            r#" stroke-dasharray="6 4""#
+        } else {
+            ""
+        };
+        if se.line {
+            let _ = writeln!(
+                s,
+                r#"<line x1="{x0}" y1="{ly}" x2="{x1}" y2="{ly}" stroke="{c}" stroke-width="2.4"{dash}/>"#
+            );
+        }
+        if se.marker || !se.line {
+            let xm = 0.5 * (x0 + x1);
+            if second_round {
+                let _ = writeln!(
+                    s,
+                    r#"<rect x="{:.1}" y="{:.1}" width="6.4" height="6.4" fill="{c}"/>"#,
+                    xm - 3.2,
+                    ly - 3.2
+                );
+            } else {
+                let _ = writeln!(
+                    s,
+                    r#"<circle cx="{xm:.1}" cy="{ly:.1}" r="3.2" fill="{c}"/>"#
+                );
+            }
+        }
         let _ = writeln!(
             s,
-            r#"<rect x="{}" y="{}" width="14" height="4" fill="{c}"/><text x="{}" y="{}">{}</text>"#,
-            w - r + 12.0,
-            ly,
-            w - r + 32.0,
-            ly + 6.0,
+            r#"<text x="{}" y="{}">{}</text>"#,
+            x1 + 8.0,
+            ly + 4.5,
             xml(&se.name)
         );
     }
