@@ -90,11 +90,14 @@ impl<T: Real> Quat<T> {
     pub fn to_axis_angle(self) -> (Vec3<T>, T) {
         let phi = self.to_rotation_vector();
         let angle = phi.norm();
-        if angle == T::ZERO {
-            (Vec3::new(T::ONE, T::ZERO, T::ZERO), T::ZERO)
-        } else {
-            (phi * (T::ONE / angle), angle)
+        // Scaled by the largest component first (division, not a reciprocal that overflows): a subnormal
+        // angle still gives a unit axis.
+        let m = phi.x.abs().max(phi.y.abs()).max(phi.z.abs());
+        if !(m > T::ZERO) {
+            return (Vec3::new(T::ONE, T::ZERO, T::ZERO), T::ZERO);
         }
+        let u = Vec3::new(phi.x / m, phi.y / m, phi.z / m);
+        (u * (T::ONE / u.norm()), angle)
     }
 
     /// Rotation matrix (row-major) with `v_ref = R v_body`. Expects a unit quaternion.

@@ -39,6 +39,8 @@ pub(crate) mod sealed {
         fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
         /// Converts an integer (rounds to nearest beyond 2²⁴ for `f32`): one instruction with an FPU.
         fn from_i32(v: i32) -> Self;
+        /// Converts to an integer (toward zero, saturating): one instruction with an FPU.
+        fn to_i32(self) -> i32;
     }
 }
 
@@ -128,6 +130,10 @@ macro_rules! impl_real {
             #[inline(always)]
             fn from_i32(v: i32) -> Self {
                 v as $t
+            }
+            #[inline(always)]
+            fn to_i32(self) -> i32 {
+                self as i32
             }
         }
 

@@ -138,8 +138,8 @@ impl<T: Real> TickClock<T> {
     /// A clock of `frequency` ticks per second whose counter is `bits` wide (1 to 32).
     ///
     /// # Errors
-    /// [`Error::NonFiniteStep`] / [`Error::NonPositiveStep`] for a frequency that is not finite and positive;
-    /// [`Error::InvalidClock`] for a width outside 1–32.
+    /// [`Error::NonFiniteStep`] / [`Error::NonPositiveStep`] for a frequency that is not finite and positive
+    /// (or so low that a tick exceeds `T::MAX / 2²⁷` s); [`Error::InvalidClock`] for a width outside 1–32.
     pub fn new(frequency: f64, bits: u32) -> Result<Self, Error> {
         if !(1..=32).contains(&bits) {
             return Err(Error::InvalidClock);
@@ -150,7 +150,12 @@ impl<T: Real> TickClock<T> {
         if !(frequency > 0.0) {
             return Err(Error::NonPositiveStep);
         }
-        let (hi, lo) = split_period(1.0 / frequency)?;
+        let (hi, lo): (T, T) = split_period(1.0 / frequency)?;
+        // The exact product splits the period with a factor 2^⌈p/2⌉ + 1 (134217729 for f64): it must stay
+        // finite. Ticks longer than T::MAX / 2^27 s (8.3e34 s in f32) are refused.
+        if !(hi.to_f64() * 134_217_729.0 <= <T as Real>::MAX.to_f64()) {
+            return Err(Error::NonFiniteStep);
+        }
         Ok(Self {
             hi,
             lo,
@@ -207,10 +212,13 @@ impl<T: Real> TickClock<T> {
         if ticks == 0 || ticks > self.mask / 2 {
             return Err(Error::TimestampNotIncreasing);
         }
-        // n·(hi + lo) + carry, with n·hi split exactly (n is exact in T below 2^24 ticks for f32).
-        let n = T::from_i32(ticks.min(i32::MAX as u32) as i32);
+        // n·(hi + lo) + carry, with n·hi split exactly. n rounds in f32 beyond 2²⁴ ticks: its rounding
+        // error (an integer below 2⁸, exact in T) is added back.
+        let count = ticks.min(i32::MAX as u32) as i32;
+        let n = T::from_i32(count);
+        let n_err = T::from_i32(count.wrapping_sub(n.to_i32()));
         let (p, p_err) = two_product(n, self.hi);
-        let (dt, s_err) = two_sum(p, p_err + n * self.lo + self.carry);
+        let (dt, s_err) = two_sum(p, p_err + n_err * self.hi + n * self.lo + self.carry);
         next.carry = s_err;
         if self.previous_ticks != 0 && u64::from(ticks) * 2 > u64::from(self.previous_ticks) * 3 {
             next.gaps = self.gaps.saturating_add(1);

@@ -112,7 +112,8 @@ pub(crate) fn check_step_angle<T: Real, G: Segment<T>>(
 ) -> Result<(), Error> {
     if limit.is_finite() {
         let angle_sq = segment.max_step_angle_squared(h);
-        let l = T::from_f64(limit);
+        // Rounded up in T (2 ulp of margin): a step at the bound is never refused for the rounding.
+        let l = T::from_f64(limit) * (T::ONE + T::EPSILON + T::EPSILON);
         if !(angle_sq <= l * l) {
             return Err(Error::StepAngleBeyondStability {
                 step_angle: angle_sq.sqrt().to_f64(),
