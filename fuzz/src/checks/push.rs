@@ -314,19 +314,11 @@ fn drive<
                 assert_eq!(p.corrections(), before.corrections() + u64::from(corrected));
                 let n = p.norm_error().to_f64().abs();
                 if cfg.z == StabilizerKind::Normalize {
-                    // KNOWN BUG (tests/fuzz_regressions.rs, `normalize_keeps_n_within_4_eps_after_a_large_step`):
-                    // the 4ε derivation assumes the unnormalized |q|² near 1; a step that changes it by a
-                    // large factor leaves more (Plain 7.7ε, and Kahan re-adds the low part of the
-                    // unnormalized state: 21ε). Allowed for steps whose norm change c exceeds 1e-3:
-                    // 8ε(1 + c); smaller steps must keep 4ε.
+                    // Documented (src/stabilize.rs, found by this target: tests/fuzz_regressions.rs,
+                    // `normalize_stays_within_its_documented_bound_after_a_large_step`): 4ε when the step
+                    // changed |q|² little (here: a norm change c ≤ 1e-3), 32ε after any step.
                     let c = norm_change_bound(&p.scheme(), theta, held) + baumgarte_change;
-                    let allowed = if c <= 1e-3 {
-                        4.0 * eps
-                    } else if c.is_finite() {
-                        8.0 * eps * (1.0 + c)
-                    } else {
-                        f64::INFINITY // no bound on the step (a NaN or infinite θ): nothing to check
-                    };
+                    let allowed = if c <= 1e-3 { 4.0 } else { 32.0 } * eps;
                     assert!(
                         n <= allowed,
                         "{} {} kahan {}: Normalize: |N| = {:.3}ε > 4ε",
@@ -364,15 +356,7 @@ fn drive<
                         match e {
                             Error::StepAngleBeyondStability { step_angle, limit } => {
                                 assert_eq!(limit, info.step_angle_limit);
-                                // KNOWN BUG (tests/fuzz_regressions.rs,
-                                // `a_refused_step_angle_exceeds_the_limit_it_reports`): the check compares
-                                // in T with the limit rounded to T (below it for f32 Rk2), so a step within
-                                // rounding of the limit is refused with step_angle ≤ limit. Allowed within
-                                // 2ε of the limit so that fuzzing goes on; anything further is a failure.
-                                assert!(
-                                    !(step_angle <= limit * (1.0 - 2.0 * T::EPS)),
-                                    "{step_angle} ≤ {limit}"
-                                );
+                                assert!(!(step_angle <= limit), "{step_angle} ≤ {limit}");
                             }
                             Error::GainBeyondStability { gain_step, limit } => {
                                 assert!(cfg.baumgarte.is_some());
