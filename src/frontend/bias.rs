@@ -54,7 +54,7 @@ impl<T: Real> FixedBias<T> {
 /// constant rate: a rotation slower than `gate` on every axis, held for a whole window, *is* learned as bias.
 /// A rotation faster than `gate` on any axis (minus the bias already learned) is never learned. Choose
 /// `gate` above the sensor's bias plus its noise peaks and below the slowest real rotation you must keep
-/// (Fusion's `FusionOffset` uses 3 °/s; the comparison with it is in docs/bias.md).
+/// (Fusion's `FusionOffset` uses 3 °/s; the comparison with it is the bias section of docs/report/README.md).
 ///
 /// ```
 /// use quatprop::frontend::BiasEstimator;
