@@ -5,7 +5,8 @@
 //! 1 rad/s, whatever its arithmetic. Both time bases here keep the period as a pair `hi + lo` (`hi` the
 //! rounded period, `lo` its rounding error, both in `T`) and carry the part of the exact time that each
 //! rounded `dt` leaves out into the next one: the `dt`s handed out sum to the exact elapsed time within half
-//! an ulp of one `dt`, at every sample.
+//! an ulp of one `dt` plus the rounding of `lo` itself, about 2⁻⁴⁸ of the period per sample in f32 (the lab
+//! measures Σdt − k·0.001 = 1.16e-10 s after 10⁸ samples of 1 ms: one ulp of `dt`).
 
 use crate::exact::{two_product, two_sum};
 use crate::{Error, Real};
