@@ -27,3 +27,36 @@ fn readme_is_a_front_door() {
         "README.md is {size} bytes (at most 10 KiB)"
     );
 }
+
+#[path = "../firmware/src/quickstart.rs"]
+mod quickstart;
+
+/// The quick start drops nothing: a FIFO read longer than its stack batch gives bit for bit the
+/// attitude of the same samples in reads of at most one batch.
+#[test]
+fn quick_start_takes_a_fifo_read_of_any_length() {
+    let counts: Vec<[i16; 3]> = (0..1000i32)
+        .map(|i| {
+            let c = |f: f64, a: f64| (a * (f * f64::from(i)).sin()) as i16;
+            [
+                12 + c(0.0131, 900.0),
+                -3 + c(0.0077, 1500.0),
+                7 + c(0.0029, 2500.0),
+            ]
+        })
+        .collect();
+    let mut long = quickstart::Attitude::new().unwrap();
+    long.on_fifo(&counts);
+    let mut short = quickstart::Attitude::new().unwrap();
+    for read in counts.chunks(7) {
+        short.on_fifo(read);
+    }
+    let bits = |a: &quickstart::Attitude| {
+        let (q, refused) = a.attitude();
+        ([q.w, q.x, q.y, q.z].map(f32::to_bits), refused)
+    };
+    assert_eq!(bits(&long), bits(&short));
+    // 1000 samples at 1 kHz of a rotation of up to 2500 counts (150 °/s): the attitude moved.
+    let (q, _) = long.attitude();
+    assert!(q.w < 0.999, "{q:?}");
+}

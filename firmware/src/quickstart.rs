@@ -6,8 +6,8 @@ use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
 use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
 use quatprop::{Error, GyroSample, Propagator, Quat};
 
-/// Samples the gyro FIFO holds at most.
-const FIFO_DEPTH: usize = 32;
+/// Samples converted at a time (on the stack); a longer FIFO read is taken in batches of this size.
+const BATCH: usize = 32;
 
 /// One attitude, fed from a gyro's FIFO: raw counts → body axes → bias removed → integrated.
 pub struct Attitude {
@@ -33,20 +33,21 @@ impl Attitude {
         })
     }
 
-    /// Takes one FIFO burst of raw counts `[x, y, z]` (sensor axes), one sample per period.
+    /// Takes one FIFO read of raw counts `[x, y, z]` (sensor axes), one sample per period, any length.
     pub fn on_fifo(&mut self, fifo: &[[i16; 3]]) {
-        let mut body = [GyroSample::default(); FIFO_DEPTH];
-        let n = fifo.len().min(FIFO_DEPTH);
-        for (slot, &counts) in body.iter_mut().zip(fifo) {
-            let sample = self.mounting.apply(self.scale.sample(counts));
-            // Counts are always finite, so the estimator never refuses them.
-            *slot = self.bias.update(sample).unwrap_or(sample);
-        }
-        // A refused sample stops the burst with the state as it was; its interval carries into the next.
-        let mut rest = body.get(..n).unwrap_or(&[]);
-        while let Err(refused) = self.propagator.push_burst(rest, &mut self.period) {
-            self.refused += 1;
-            rest = rest.get(refused.index + 1..).unwrap_or(&[]);
+        for batch in fifo.chunks(BATCH) {
+            let mut body = [GyroSample::default(); BATCH];
+            for (slot, &counts) in body.iter_mut().zip(batch) {
+                let sample = self.mounting.apply(self.scale.sample(counts));
+                // Counts are always finite, so the estimator never refuses them.
+                *slot = self.bias.update(sample).unwrap_or(sample);
+            }
+            // A refused sample stops the burst with the state as it was; its interval carries into the next.
+            let mut rest = body.get(..batch.len()).unwrap_or(&[]);
+            while let Err(refused) = self.propagator.push_burst(rest, &mut self.period) {
+                self.refused += 1;
+                rest = rest.get(refused.index + 1..).unwrap_or(&[]);
+            }
         }
     }
 
