@@ -10,7 +10,6 @@ use crate::{
 use clap::{Args, Parser, Subcommand};
 use quatprop::scheme::SchemeKind;
 use std::path::PathBuf;
-use std::time::Instant;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -216,10 +215,16 @@ pub fn run(cli: &Cli, ctx: &mut Ctx) -> Vec<String> {
     let mut sections = Vec::new();
     let mut run = |ctx: &mut Ctx, name: &'static str, f: &mut dyn FnMut(&mut Ctx) -> String| {
         ctx.bar.set_message(name);
-        let t0 = Instant::now();
+        let clock = crate::timing::Clock::start();
         let s = f(ctx);
-        ctx.bar
-            .suspend(|| eprintln!("{name}: done in {:.1} s", t0.elapsed().as_secs_f64()));
+        let row = clock.row(name);
+        ctx.bar.suspend(|| {
+            eprintln!(
+                "{name}: done in {:.1} s (CPU {:.1} s)",
+                row.wall_s, row.cpu_s
+            )
+        });
+        ctx.times.push(row);
         sections.push(s);
     };
     // The rigid bodies' references are tabulated once, long enough for every study.

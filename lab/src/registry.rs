@@ -5,7 +5,7 @@ use crate::table::{self, Csv};
 use crate::{
     atlas, baumgarte_sweep, bias, coning_drift, geiger, long_horizon, scene_table, sensor,
 };
-use crate::{time_base, work_precision as wp};
+use crate::{time_base, timing, work_precision as wp};
 use std::path::Path;
 
 macro_rules! registry {
@@ -63,6 +63,7 @@ registry!(
         bias::FusionCRow,
         time_base::TimeBaseRow,
         long_horizon::SummaryRow,
+        timing::StudyTimeRow,
     ]
 );
 
