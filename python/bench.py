@@ -4,7 +4,7 @@ The Rust loop (`quatprop._native.rust_loop_f32/_f64`) is what a Rust user writes
 configuration — `Propagator<T, ExpMap, History<T>, FirstOrder>`, a `FixedPeriod`, `push` per sample, the
 attitude stored after each — with concrete types, on the same buffer, timed in Rust (output allocation
 included). `integrate` is timed from Python around the whole call (argument checks, dispatch, output
-array). The two alternate, several rounds; the ratio is of the fastest round of each (the least
+array). The two alternate (which goes first alternates too), several rounds; the ratio is of the fastest round of each (the least
 disturbed by other processes), and the results must be bit for bit equal.
 
     python bench.py                 # 10^7 samples, 5 rounds, f32 and f64; writes docs/python.md
@@ -48,11 +48,15 @@ def measure(n: int, rounds: int, precision: str) -> dict:
     gyr = stream(n, dtype)
     rust_loop = _native.rust_loop_f32 if precision == "f32" else _native.rust_loop_f64
     py_s, rust_s = [], []
-    for _ in range(rounds):
+    for k in range(rounds):
+        # Alternate which runs first, so neither always follows the other's memory release.
+        if k % 2:
+            seconds, q_rust = rust_loop(gyr, 1e-3)
         t0 = time.perf_counter()
         q = quatprop.integrate(gyr, dt=1e-3, precision=precision)
         py_s.append(time.perf_counter() - t0)
-        seconds, q_rust = rust_loop(gyr, 1e-3)
+        if not k % 2:
+            seconds, q_rust = rust_loop(gyr, 1e-3)
         rust_s.append(seconds)
         if not np.array_equal(q.view(np.uint8), q_rust.view(np.uint8)):
             raise SystemExit("integrate and the Rust loop differ: not bit for bit")

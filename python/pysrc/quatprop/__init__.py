@@ -239,6 +239,8 @@ def integrate(
             raise ValueError("ticks need tick_hz (ticks per second)")
     if tick_hz is not None and ticks is None:
         raise ValueError("tick_hz goes with ticks")
+    if isinstance(tick_bits, bool) or not isinstance(tick_bits, (int, np.integer)) or not 0 <= tick_bits < 2**32:
+        raise ValueError(f"tick_bits must be the counter width in bits (1 to 32), got {tick_bits!r}")
 
     if q0 is None:
         q0v = [1.0, 0.0, 0.0, 0.0]

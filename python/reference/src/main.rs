@@ -24,7 +24,10 @@ const PERIOD: f64 = 1.0e-3;
 const TICK_HZ: f64 = 1.0e6;
 
 /// A deterministic stream: a coning motion at incommensurate frequencies plus small noise (an LCG).
-fn inputs() -> (Vec<[f64; 3]>, Vec<f64>, Vec<[f64; 3]>, Vec<f64>, Vec<u32>) {
+/// Rates (rad/s) and timestamps (s), the same with bad samples, and the sensor's ticks.
+type Inputs = (Vec<[f64; 3]>, Vec<f64>, Vec<[f64; 3]>, Vec<f64>, Vec<u32>);
+
+fn inputs() -> Inputs {
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
     let mut noise = move || {
         state = state
