@@ -1,0 +1,360 @@
+"""quatprop: gyroscope samples to attitude quaternions, bit for bit the quatprop Rust library.
+
+Conventions (the Rust library's, unchanged):
+
+- A quaternion is an array ``[w, x, y, z]``: **scalar first** (SciPy's ``Rotation.as_quat()`` is scalar
+  last: ``q[..., [1, 2, 3, 0]]`` converts), **Hamilton** product (``ij = k``).
+- An attitude maps **body** vectors to the reference frame: ``v_ref = q ⊗ (0, v_body) ⊗ q*``
+  (SciPy: ``Rotation.from_quat(q[[1, 2, 3, 0]]).apply(v_body)``).
+- Rates are **body-frame** and compose on the right: ``q' = ½ q ⊗ (0, ω)``; a constant rate ω held for
+  ``t`` seconds turns ``q0`` into ``q0 ⊗ exp(ω t / 2)`` (SciPy: ``R0 * Rotation.from_rotvec(ω t)``).
+- Units: radians, rad/s, seconds.
+- Euler angles: ``zyx`` = aerospace (yaw, pitch, roll), ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (SciPy:
+  ``as_euler("ZYX")``); ``zxz`` = classical (psi, theta, phi), ``R = Rz(psi) Rx(theta) Rz(phi)``
+  (SciPy: ``as_euler("ZXZ")``).
+
+The integration runs in Rust, in the core library's own loop over the whole buffer, with the GIL
+released; no Python code runs per sample.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _native
+
+__all__ = [
+    "integrate",
+    "RefusedSample",
+    "BiasEstimator",
+    "to_euler_zyx",
+    "from_euler_zyx",
+    "to_euler_zxz",
+    "from_euler_zxz",
+    "SCHEMES",
+    "STABILIZERS",
+    "INPUTS",
+    "CONINGS",
+    "AXIS_REMAPS",
+]
+
+__version__ = "0.2.0"
+
+SCHEMES = ("euler", "rk2", "rk3", "rk4", "rk5", "expmap", "magnus4", "cf4")
+"""Integration schemes (the core's ``SchemeKind``)."""
+STABILIZERS = ("off", "normalize", "first_order", "every:N")
+"""Post-step stabilizers (the core's ``StabilizerKind``); ``"every:N"`` normalizes every N-th step."""
+INPUTS = ("hold", "linear", "history", "twice_rate", "gauss_points", "delta_angles")
+"""Input models (the core's ``input`` module); ``delta_angles`` takes increments (rad), not rates."""
+CONINGS = ("uncorrected", "one_plus_previous", "two_sample", "three_sample", "four_sample", "five_sample")
+"""Coning corrections for ``input="delta_angles"`` (the core's ``ConingKind``)."""
+AXIS_REMAPS = tuple(_native.AXIS_REMAPS)
+"""The 24 axis remaps (the core's ``AxisRemap``): ``"PyNxPz"`` means body x = +sensor y,
+body y = −sensor x, body z = +sensor z."""
+
+
+class RefusedSample(ValueError):
+    """A sample the propagator refused (``on_refused="raise"``).
+
+    Attributes:
+        index: the index of the refused sample in ``gyr``.
+        kind: the core's ``Error`` variant, e.g. ``"NonFiniteRate"``, ``"TimestampNotIncreasing"``,
+            ``"StepAngleBeyondStability"``.
+        reason: the core's message for it.
+    """
+
+    def __init__(self, index: int, kind: str, reason: str) -> None:
+        super().__init__(f"sample {index} refused: {reason} ({kind})")
+        self.index = index
+        self.kind = kind
+        self.reason = reason
+
+    def __reduce__(self):  # picklable (multiprocessing)
+        return (RefusedSample, (self.index, self.kind, self.reason))
+
+
+@dataclass(frozen=True)
+class BiasEstimator:
+    """Learns the gyro bias while the body is still (the core's ``frontend::BiasEstimator``).
+
+    Samples are taken in windows of ``window`` samples; a window in which every axis (minus the current
+    estimate) stays within ``gate`` rad/s is *still*, and its mean refines the estimate (running mean over
+    the last ``memory`` still windows). ``initial`` (rad/s) starts from a known bias. A rotation slower
+    than ``gate`` on every axis held for a whole window is learned as bias: a gyroscope alone cannot tell
+    them apart.
+    """
+
+    window: int
+    gate: float
+    memory: int = 64
+    initial: Optional[Sequence[float]] = None
+
+
+_DTYPES = {"f32": np.float32, "f64": np.float64}
+
+
+def _array(name: str, value, dtype, ndim: int, last: Optional[int] = None) -> np.ndarray:
+    try:
+        a = np.asarray(value)
+    except Exception as e:  # pragma: no cover - numpy's own message is clear
+        raise TypeError(f"{name}: cannot be converted to an array ({e})") from None
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must be a real numeric array, got dtype {a.dtype}")
+    if a.ndim != ndim or (last is not None and a.shape[-1] != last):
+        want = "(N,)" if ndim == 1 else f"(N, {last})"
+        raise ValueError(f"{name} must have shape {want}, got {a.shape}")
+    return np.ascontiguousarray(a, dtype=dtype)
+
+
+def _stabilizer(stabilizer: str) -> Tuple[str, int]:
+    if not isinstance(stabilizer, str):
+        raise TypeError(f"stabilizer must be a string, got {type(stabilizer).__name__}")
+    if stabilizer.startswith("every:"):
+        try:
+            n = int(stabilizer[len("every:"):])
+        except ValueError:
+            raise ValueError(f"stabilizer {stabilizer!r}: 'every:N' needs an integer N >= 1") from None
+        if not 1 <= n <= 2**32 - 1:
+            raise ValueError(f"stabilizer {stabilizer!r}: N must be in 1 .. 2**32-1")
+        return "every", n
+    if stabilizer not in ("off", "normalize", "first_order"):
+        raise ValueError(f"unknown stabilizer {stabilizer!r}; choose one of {STABILIZERS}")
+    return stabilizer, 0
+
+
+def _choice(name: str, value: str, choices: Sequence[str]) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {type(value).__name__}")
+    if value not in choices:
+        raise ValueError(f"unknown {name} {value!r}; choose one of {tuple(choices)}")
+    return value
+
+
+def integrate(
+    gyr,
+    dt: Optional[float] = None,
+    t=None,
+    *,
+    ticks=None,
+    tick_hz: Optional[float] = None,
+    tick_bits: int = 32,
+    scheme: str = "expmap",
+    stabilizer: str = "first_order",
+    input: str = "history",
+    coning: str = "two_sample",
+    accumulator: str = "plain",
+    precision: str = "f32",
+    q0=None,
+    alignment=None,
+    bias=None,
+    on_refused: str = "raise",
+):
+    """Integrates body-frame gyro samples into attitude quaternions, bit for bit as the Rust library.
+
+    Each sample goes through the core's ``Propagator::push`` in one Rust loop (GIL released); row ``k``
+    of the result is the attitude after sample ``k``.
+
+    Args:
+        gyr: (N, 3) body rates ω (rad/s), or angle increments Δθ (rad) for ``input="delta_angles"``.
+            float32 or float64 (any numeric dtype is converted); rounded once to ``precision``.
+        dt: fixed sample period (s), given once and kept exactly (the core's ``FixedPeriod``: the ``dt``
+            of the samples sum to ``k·dt`` within half an ulp). Every sample, the first included, is
+            pushed with its period, as ``Propagator::push_burst`` does.
+        t: (N,) timestamps (s, float64), strictly increasing. The first accepted sample only starts
+            the stream (``Propagator::start``); each later one is pushed with
+            ``dt_k = round(t_k − t_last + carry)``, ``t_last`` the last *accepted* timestamp, the
+            difference formed in float64 and rounded once to ``precision``, and ``carry`` (float64) the
+            part of earlier intervals that this rounding left out — so the ``dt`` sum to ``t_last − t_0``
+            within half an ulp of one ``dt`` (in f64 ``dt_k = t_k − t_last`` exactly as float64 computes
+            it; the carry stays zero). A timestamp that does not advance is refused
+            (``TimestampNotIncreasing``), a NaN or infinite one too (``NonFiniteStep``).
+        ticks: (N,) integer timestamps of the sensor's clock (``tick_hz`` ticks per second, a counter of
+            ``tick_bits`` bits that wraps): the core's ``TickClock``, as ``Propagator::push_burst_timed``.
+            Give exactly one of ``dt``, ``t``, ``ticks``.
+        scheme: one of :data:`SCHEMES`.
+        stabilizer: ``"off"``, ``"normalize"``, ``"first_order"`` or ``"every:N"``.
+        input: one of :data:`INPUTS`. ``history`` (cubic through the last four samples, fourth order, no
+            latency) is the recommended model for a rate gyro.
+        coning: the coning correction of ``input="delta_angles"``, one of :data:`CONINGS`.
+        accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
+        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result.
+        q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
+        alignment: sensor → body axes, applied to each sample first: an axis remap name (one of
+            :data:`AXIS_REMAPS`) or a 3×3 rotation matrix ``R`` with ``ω_body = R ω_sensor``; a matrix
+            that is not a rotation (within 1e-4) raises ``ValueError``.
+        bias: subtracted after the alignment (body axes): a fixed ``[bx, by, bz]`` (rad/s) or a
+            :class:`BiasEstimator`. Not with ``delta_angles``.
+        on_refused: ``"raise"``: a refused sample raises :class:`RefusedSample` (its index, kind and
+            reason). ``"mask"``: a refused sample is skipped — the state stays as after the last
+            accepted sample and its interval carries into the next sample, as the Rust docs prescribe —
+            and ``(q, refused)`` is returned, ``refused`` a boolean (N,) array.
+
+    Returns:
+        q: (N, 4) attitudes ``[w, x, y, z]`` (scalar first, Hamilton, body to reference), dtype of
+        ``precision``; or ``(q, refused)`` with ``on_refused="mask"``.
+
+    Raises:
+        RefusedSample: a sample was refused (``on_refused="raise"``).
+        ValueError: a bad shape, option or parameter (e.g. ``every:0``, a zero ``q0``, ``dt <= 0``).
+        TypeError: an argument of the wrong type.
+    """
+    precision = _choice("precision", precision, tuple(_DTYPES))
+    dtype = _DTYPES[precision]
+    gyr = _array("gyr", gyr, dtype, 2, 3)
+    n = gyr.shape[0]
+    scheme = _choice("scheme", scheme, SCHEMES)
+    stab, every = _stabilizer(stabilizer)
+    input = _choice("input", input, INPUTS)
+    coning = _choice("coning", coning, CONINGS)
+    accumulator = _choice("accumulator", accumulator, ("plain", "kahan"))
+    on_refused = _choice("on_refused", on_refused, ("raise", "mask"))
+
+    given = [name for name, v in (("dt", dt), ("t", t), ("ticks", ticks)) if v is not None]
+    if len(given) != 1:
+        raise ValueError(f"give exactly one of dt, t, ticks (got {given or 'none'})")
+    period = None
+    t_arr = None
+    tick_arr = None
+    if dt is not None:
+        if isinstance(dt, (bool, np.bool_)) or not isinstance(dt, (int, float, np.integer, np.floating)):
+            raise TypeError(f"dt must be a number (s), got {type(dt).__name__}; per-sample times go in t")
+        period = float(dt)
+    elif t is not None:
+        t_arr = _array("t", t, np.float64, 1)
+        if t_arr.shape[0] != n:
+            raise ValueError(f"t has {t_arr.shape[0]} timestamps for {n} samples")
+    else:
+        a = np.asarray(ticks)
+        if a.dtype.kind not in "iu":
+            raise TypeError(f"ticks must be an integer array, got dtype {a.dtype}")
+        if a.ndim != 1 or a.shape[0] != n:
+            raise ValueError(f"ticks must have shape ({n},), got {a.shape}")
+        if a.size and (a.min() < 0 or a.max() > 2**32 - 1):
+            raise ValueError("ticks must be in 0 .. 2**32-1 (counter values)")
+        tick_arr = np.ascontiguousarray(a, dtype=np.uint32)
+        if tick_hz is None:
+            raise ValueError("ticks need tick_hz (ticks per second)")
+    if tick_hz is not None and ticks is None:
+        raise ValueError("tick_hz goes with ticks")
+    if isinstance(tick_bits, bool) or not isinstance(tick_bits, (int, np.integer)) or not 0 <= tick_bits < 2**32:
+        raise ValueError(f"tick_bits must be the counter width in bits (1 to 32), got {tick_bits!r}")
+
+    if q0 is None:
+        q0v = [1.0, 0.0, 0.0, 0.0]
+    else:
+        q0a = np.asarray(q0, dtype=np.float64)
+        if q0a.shape != (4,):
+            raise ValueError(f"q0 must be [w, x, y, z], got shape {q0a.shape}")
+        q0v = [float(c) for c in q0a]
+
+    remap = None
+    matrix = None
+    if alignment is not None:
+        if isinstance(alignment, str):
+            if alignment not in AXIS_REMAPS:
+                raise ValueError(f"unknown axis remap {alignment!r}; e.g. 'PyNxPz' (see AXIS_REMAPS)")
+            remap = alignment
+        else:
+            m = np.asarray(alignment, dtype=np.float64)
+            if m.shape != (3, 3):
+                raise ValueError(f"alignment matrix must be 3x3, got shape {m.shape}")
+            matrix = [[float(e) for e in row] for row in m]
+
+    fixed_bias = None
+    estimator = None
+    if bias is not None:
+        if input == "delta_angles":
+            raise ValueError("bias (rad/s) does not apply to delta angles")
+        if isinstance(bias, BiasEstimator):
+            initial = None
+            if bias.initial is not None:
+                ia = np.asarray(bias.initial, dtype=np.float64)
+                if ia.shape != (3,):
+                    raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
+                initial = [float(c) for c in ia]
+            for name, v in (("window", bias.window), ("memory", bias.memory)):
+                if not isinstance(v, (int, np.integer)) or not 1 <= v <= 2**32 - 1:
+                    raise ValueError(f"BiasEstimator.{name} must be an integer >= 1, got {v!r}")
+            estimator = (int(bias.window), float(bias.gate), int(bias.memory), initial)
+        else:
+            ba = np.asarray(bias, dtype=np.float64)
+            if ba.shape != (3,):
+                raise ValueError(f"bias must be [bx, by, bz] (rad/s) or a BiasEstimator, got shape {ba.shape}")
+            fixed_bias = [float(c) for c in ba]
+
+    native = _native.integrate_f32 if precision == "f32" else _native.integrate_f64
+    q, mask, refused = native(
+        gyr,
+        period,
+        t_arr,
+        tick_arr,
+        float(tick_hz) if tick_hz is not None else 0.0,
+        int(tick_bits),
+        scheme,
+        stab,
+        every,
+        input,
+        coning,
+        accumulator == "kahan",
+        q0v,
+        on_refused == "mask",
+        remap,
+        matrix,
+        fixed_bias,
+        estimator,
+    )
+    if refused is not None:
+        raise RefusedSample(*refused)
+    if on_refused == "mask":
+        return q, mask
+    return q
+
+
+def _rows(name: str, a, width: int) -> Tuple[np.ndarray, tuple]:
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must be a real numeric array, got dtype {arr.dtype}")
+    if arr.shape[-1:] != (width,):
+        raise ValueError(f"{name} must have shape (..., {width}), got {arr.shape}")
+    dtype = np.float32 if arr.dtype == np.float32 else np.float64
+    return np.ascontiguousarray(arr.reshape(-1, width), dtype=dtype), arr.shape[:-1]
+
+
+def _map(fn32, fn64, name: str, a, win: int, wout: int) -> np.ndarray:
+    rows, lead = _rows(name, a, win)
+    out = (fn32 if rows.dtype == np.float32 else fn64)(rows)
+    return out.reshape(lead + (wout,))
+
+
+def to_euler_zyx(q) -> np.ndarray:
+    """Aerospace Euler angles ``[..., (yaw, pitch, roll)]`` (rad) of unit quaternions ``[..., (w, x, y, z)]``.
+
+    ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (intrinsic Z-Y'-X''; SciPy ``as_euler("ZYX")``); yaw and roll in
+    (−π, π], pitch in [−π/2, π/2]. Computed from half-angle atan2 formulas: accurate up to the gimbal
+    lock. float32 input stays float32 (computed in f32), anything else in float64.
+    """
+    return _map(_native.to_euler_zyx_f32, _native.to_euler_zyx_f64, "q", q, 4, 3)
+
+
+def from_euler_zyx(e) -> np.ndarray:
+    """Quaternions ``[..., (w, x, y, z)]`` of aerospace Euler angles ``[..., (yaw, pitch, roll)]`` (rad):
+    ``qz(yaw) ⊗ qy(pitch) ⊗ qx(roll)``."""
+    return _map(_native.from_euler_zyx_f32, _native.from_euler_zyx_f64, "e", e, 3, 4)
+
+
+def to_euler_zxz(q) -> np.ndarray:
+    """Classical Euler angles ``[..., (psi, theta, phi)]`` (rad) of unit quaternions ``[..., (w, x, y, z)]``.
+
+    ``R = Rz(psi) Rx(theta) Rz(phi)`` (intrinsic Z-X'-Z''; SciPy ``as_euler("ZXZ")``); psi, phi in
+    (−π, π], theta in [0, π]; accurate at theta → 0 and π.
+    """
+    return _map(_native.to_euler_zxz_f32, _native.to_euler_zxz_f64, "q", q, 4, 3)
+
+
+def from_euler_zxz(e) -> np.ndarray:
+    """Quaternions ``[..., (w, x, y, z)]`` of classical Euler angles ``[..., (psi, theta, phi)]`` (rad):
+    ``qz(psi) ⊗ qx(theta) ⊗ qz(phi)``."""
+    return _map(_native.from_euler_zxz_f32, _native.from_euler_zxz_f64, "e", e, 3, 4)

@@ -1,0 +1,105 @@
+"""Typed interface of quatprop. Conventions: quaternions are [w, x, y, z] (scalar first), Hamilton product,
+the attitude maps body vectors to the reference frame, rates are body-frame (q' = ½ q ⊗ (0, ω)),
+radians, rad/s, seconds."""
+
+from typing import Literal, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+SCHEMES: Tuple[str, ...]
+STABILIZERS: Tuple[str, ...]
+INPUTS: Tuple[str, ...]
+CONINGS: Tuple[str, ...]
+AXIS_REMAPS: Tuple[str, ...]
+
+Scheme = Literal["euler", "rk2", "rk3", "rk4", "rk5", "expmap", "magnus4", "cf4"]
+# "off", "normalize", "first_order", or "every:N" (N >= 1).
+Stabilizer = str
+Input = Literal["hold", "linear", "history", "twice_rate", "gauss_points", "delta_angles"]
+Coning = Literal["uncorrected", "one_plus_previous", "two_sample", "three_sample", "four_sample", "five_sample"]
+Accumulator = Literal["plain", "kahan"]
+Precision = Literal["f32", "f64"]
+FloatArray = npt.NDArray[np.floating]
+
+class RefusedSample(ValueError):
+    """A sample the propagator refused: its index in gyr, the core's Error variant and its message."""
+
+    index: int
+    kind: str
+    reason: str
+    def __init__(self, index: int, kind: str, reason: str) -> None: ...
+
+class BiasEstimator:
+    """Learns the gyro bias (rad/s) over still windows of `window` samples, every axis within `gate` rad/s;
+    a running mean over the last `memory` still windows; `initial` starts from a known bias."""
+
+    window: int
+    gate: float
+    memory: int
+    initial: Optional[Sequence[float]]
+    def __init__(
+        self, window: int, gate: float, memory: int = 64, initial: Optional[Sequence[float]] = None
+    ) -> None: ...
+
+@overload
+def integrate(
+    gyr: npt.ArrayLike,
+    dt: Optional[float] = None,
+    t: Optional[npt.ArrayLike] = None,
+    *,
+    ticks: Optional[npt.ArrayLike] = None,
+    tick_hz: Optional[float] = None,
+    tick_bits: int = 32,
+    scheme: Scheme = "expmap",
+    stabilizer: Stabilizer = "first_order",
+    input: Input = "history",
+    coning: Coning = "two_sample",
+    accumulator: Accumulator = "plain",
+    precision: Precision = "f32",
+    q0: Optional[npt.ArrayLike] = None,
+    alignment: Union[str, npt.ArrayLike, None] = None,
+    bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
+    on_refused: Literal["raise"] = "raise",
+) -> FloatArray:
+    """(N, 3) body rates (rad/s; increments in rad for delta_angles) → (N, 4) attitudes [w, x, y, z]
+    (scalar first, Hamilton, body to reference) after each sample, in the dtype of `precision`.
+    Give exactly one of dt (fixed period, s), t (N timestamps, s, float64) or ticks (+ tick_hz).
+    Raises RefusedSample for a refused sample (index, kind, reason)."""
+
+@overload
+def integrate(
+    gyr: npt.ArrayLike,
+    dt: Optional[float] = None,
+    t: Optional[npt.ArrayLike] = None,
+    *,
+    ticks: Optional[npt.ArrayLike] = None,
+    tick_hz: Optional[float] = None,
+    tick_bits: int = 32,
+    scheme: Scheme = "expmap",
+    stabilizer: Stabilizer = "first_order",
+    input: Input = "history",
+    coning: Coning = "two_sample",
+    accumulator: Accumulator = "plain",
+    precision: Precision = "f32",
+    q0: Optional[npt.ArrayLike] = None,
+    alignment: Union[str, npt.ArrayLike, None] = None,
+    bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
+    on_refused: Literal["mask"],
+) -> Tuple[FloatArray, npt.NDArray[np.bool_]]:
+    """As above; a refused sample is skipped (state kept, interval carried into the next sample) and
+    flagged True in the returned (N,) boolean mask."""
+
+def to_euler_zyx(q: npt.ArrayLike) -> FloatArray:
+    """[..., (w, x, y, z)] → [..., (yaw, pitch, roll)] (rad), R = Rz(yaw) Ry(pitch) Rx(roll)."""
+
+def from_euler_zyx(e: npt.ArrayLike) -> FloatArray:
+    """[..., (yaw, pitch, roll)] (rad) → [..., (w, x, y, z)] = qz(yaw) ⊗ qy(pitch) ⊗ qx(roll)."""
+
+def to_euler_zxz(q: npt.ArrayLike) -> FloatArray:
+    """[..., (w, x, y, z)] → [..., (psi, theta, phi)] (rad), R = Rz(psi) Rx(theta) Rz(phi)."""
+
+def from_euler_zxz(e: npt.ArrayLike) -> FloatArray:
+    """[..., (psi, theta, phi)] (rad) → [..., (w, x, y, z)] = qz(psi) ⊗ qx(theta) ⊗ qz(phi)."""
