@@ -22,6 +22,7 @@ mod real;
 mod sample;
 pub mod scheme;
 pub mod stabilize;
+mod trig;
 mod vec3;
 
 pub use convert::{EulerZxz, EulerZyx};

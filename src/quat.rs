@@ -6,6 +6,7 @@
 //! - Body rates compose on the right: `q' = ½ q ⊗ (0, ω)`, the seed paper's eq. (1); a body-frame rotation
 //!   vector `φ` advances the attitude as `q ← q ⊗ exp_q(φ)`.
 
+use crate::real::sealed::Float;
 use crate::{Real, Vec3};
 use core::ops::{Add, Mul, Neg, Sub};
 
@@ -194,7 +195,24 @@ impl<T: Real> Quat<T> {
     #[inline]
     #[must_use]
     pub fn from_rotation_vector(phi: Vec3<T>) -> Self {
-        Self::exp_half(phi * T::HALF)
+        let v = phi * T::HALF;
+        let q = Self::exp_half(v);
+        if q.w.is_finite() {
+            q
+        } else {
+            // Beyond the step path's sine (f32: a half angle over 8192 rad), or a non-finite input.
+            Self::exp_half_any_angle(v)
+        }
+    }
+
+    /// [`Self::exp_half`] for any angle, with libm's general sine (its argument reduction covers every
+    /// `T`). Out of line: a firmware that only steps never links it.
+    #[cold]
+    #[inline(never)]
+    fn exp_half_any_angle(v: Vec3<T>) -> Self {
+        let x = v.norm();
+        let half = (x * T::HALF).sin();
+        Self::from_parts(T::ONE - T::TWO * half * half, v * (x.sin() / x))
     }
 
     /// `exp((0, v)) = (cos|v|, sin|v| v/|v|)` for a half-angle vector `v` (rad).
@@ -227,11 +245,14 @@ impl<T: Real> Quat<T> {
     #[cold]
     #[inline(never)]
     fn exp_half_minus_one_trig(v: Vec3<T>, x2: T) -> Self {
-        // |v|² may have overflowed (or be NaN): recompute the norm without overflow then.
-        let x = if x2.is_finite() { x2.sqrt() } else { v.norm() };
-        let half = (x * T::HALF).sin();
+        // The step path's sine: f32 covers x ≤ 8192 rad and gives NaN beyond (the step is then refused as
+        // a non-finite result), so no general argument reduction is linked (src/trig.rs). An overflowed
+        // |v|² (f32: |v| > 1.8e19, f64: 1.3e154) gives x = ∞ and a NaN result the same way;
+        // `from_rotation_vector` takes those angles through libm.
+        let x = x2.sqrt();
+        let half = Float::sin_step(x * T::HALF);
         // cos x − 1 = −2 sin²(x/2).
-        Self::from_parts(-(T::TWO * half * half), v * (x.sin() / x))
+        Self::from_parts(-(T::TWO * half * half), v * (Float::sin_step(x) / x))
     }
 
     /// The rotation vector `φ` (rad) with `exp_q(φ) = ±q`, choosing `|φ| ≤ π` (the logarithm map).

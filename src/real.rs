@@ -26,6 +26,9 @@ pub(crate) mod sealed {
         const EXP_TAYLOR_MAX_SQ: Self;
         /// Natural exponential.
         fn exp(self) -> Self;
+        /// Sine on the step path (the exponential map's large-angle branch): `f32`:
+        /// [`crate::trig::sin_f32`] (`0 ≤ x ≤ 8192`, NaN beyond; no `f64` code linked); `f64`: libm.
+        fn sin_step(self) -> Self;
         /// `sqrt(self² + y²)` without undue overflow or underflow.
         fn hypot(self, y: Self) -> Self;
         /// The larger of two numbers by one comparison (`other` if either is NaN). For validated, finite
@@ -99,13 +102,17 @@ pub trait Real:
 }
 
 macro_rules! impl_real {
-    ($t:ty, $sqrt:path, $sin:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
+    ($t:ty, $sqrt:path, $sin:path, $sin_step:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
         impl sealed::Float for $t {
             const EXP_TAYLOR_MAX_SQ: Self = $taylor;
             const HARDWARE_FLOAT: bool = $hw;
             #[inline(always)]
             fn exp(self) -> Self {
                 $exp(self)
+            }
+            #[inline(always)]
+            fn sin_step(self) -> Self {
+                $sin_step(self)
             }
             #[inline(always)]
             fn hypot(self, y: Self) -> Self {
@@ -186,6 +193,7 @@ impl_real!(
     f32,
     libm::sqrtf,
     libm::sinf,
+    crate::trig::sin_f32,
     libm::cosf,
     libm::expf,
     libm::atan2f,
@@ -203,6 +211,7 @@ impl_real!(
 impl_real!(
     f64,
     libm::sqrt,
+    libm::sin,
     libm::sin,
     libm::cos,
     libm::exp,

@@ -259,13 +259,33 @@ fn overflowing_rates_are_refused_not_propagated() {
         Err(Error::StepAngleBeyondStability { .. })
     ));
     assert_eq!(p, before);
-    // The exponential map has no bound: a huge but finite rotation is a valid (if meaningless) rotation,
-    // computed without overflow, and the attitude stays finite and unit (Normalize: |N| ≤ 4ε).
+    // The exponential map has no stability bound. In f32 its step path computes rotations whose half angle
+    // is at most 8192 rad (src/trig.rs; a step of 16384 rad) and refuses larger ones as a non-finite
+    // result, state unchanged; in f64 any rotation whose |ω·h/2|² does not overflow.
     let mut p =
         Propagator::new(Quat::<f32>::IDENTITY, SchemeKind::ExpMap, Hold, Normalize).unwrap();
-    p.push(huge, 1.0).unwrap();
-    assert!(p.attitude().is_finite());
+    let before = p;
+    assert_eq!(p.push(huge, 1.0), Err(Error::NonFiniteResult));
+    assert_eq!(p, before);
+    let beyond = GyroSample::new(Vec3::new(0.0, 0.0, 16_384.5_f32));
+    assert_eq!(p.push(beyond, 1.0), Err(Error::NonFiniteResult));
+    assert_eq!(p, before);
+    // Just inside: a yaw of 16383 rad, computed (Normalize: |N| ≤ 4ε) to the angle modulo 2π.
+    let inside = GyroSample::new(Vec3::new(0.0, 0.0, 16_383.0_f32));
+    p.push(inside, 1.0).unwrap();
     assert!(p.norm_error().abs() <= 4.0 * f32::EPSILON);
+    let yaw = 2.0 * f64::from(p.attitude().z).atan2(f64::from(p.attitude().w));
+    let off = libm::remainder(yaw - 16_383.0, 2.0 * core::f64::consts::PI);
+    assert!(
+        off.abs() < 1e-6,
+        "yaw {yaw} is {off} rad off 16383 rad modulo 2π"
+    );
+    let mut p =
+        Propagator::new(Quat::<f64>::IDENTITY, SchemeKind::ExpMap, Hold, Normalize).unwrap();
+    p.push(GyroSample::new(Vec3::new(3e38_f64, 3e38, 0.0)), 1.0)
+        .unwrap();
+    assert!(p.attitude().is_finite());
+    assert!(p.norm_error().abs() <= 4.0 * f64::EPSILON);
 }
 
 #[test]
