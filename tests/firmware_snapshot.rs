@@ -1,5 +1,6 @@
 //! Host half of the firmware checks: runs the firmware's own scene code (`firmware/src/scenes.rs`) and the
-//! README's quick start (`firmware/src/quickstart.rs`), compiled here for the host, and asserts that every
+//! README's quick start (`firmware/src/quickstart.rs`) and the embedded-hal driver demo
+//! (`firmware/src/device_model.rs`, `firmware/src/driver_demo.rs`), compiled here for the host, and asserts that every
 //! result is bit-identical to `firmware/expected/*.txt`. `firmware/check-boards` runs the same code on each
 //! QEMU board and diffs its output against the same files. IEEE binary32 on both sides, no FMA contraction,
 //! the same libm code: any difference is a bug to explain.
@@ -14,6 +15,14 @@ mod scenes;
 #[path = "../firmware/src/quickstart.rs"]
 mod quickstart;
 
+#[path = "../firmware/src/device_model.rs"]
+mod device_model;
+
+#[path = "../firmware/src/driver_demo.rs"]
+mod driver_demo;
+
+use embedded_hal::spi::{Operation, SpiDevice};
+use embedded_hal_mock::eh1::spi::{Mock as SpiMock, Transaction as SpiTransaction};
 use scenes::{bits, run, Config, Outcome, Scene};
 use std::path::PathBuf;
 
@@ -136,4 +145,141 @@ fn quickstart_matches_the_firmware_bit_for_bit() {
         refused
     );
     check_or_bless("quickstart.txt", &got);
+}
+
+/// The driver demo's SPI bus on the host: the scripted chip, every transaction recorded as an
+/// `embedded-hal-mock` expectation (and as raw bytes, to check the FIFO reads against the script).
+struct Recorder {
+    model: device_model::Icm42688Model,
+    expectations: Vec<SpiTransaction<u8>>,
+    transfers: Vec<(Vec<u8>, Vec<u8>)>,
+}
+
+impl embedded_hal::spi::ErrorType for Recorder {
+    type Error = device_model::ModelError;
+}
+
+impl SpiDevice for Recorder {
+    fn transaction(&mut self, operations: &mut [Operation<'_, u8>]) -> Result<(), Self::Error> {
+        self.expectations.push(SpiTransaction::transaction_start());
+        for op in operations.iter_mut() {
+            match op {
+                Operation::TransferInPlace(buf) => {
+                    let sent = buf.to_vec();
+                    self.model
+                        .transaction(&mut [Operation::TransferInPlace(buf)])?;
+                    self.expectations.push(SpiTransaction::transfer_in_place(
+                        sent.clone(),
+                        buf.to_vec(),
+                    ));
+                    self.transfers.push((sent, buf.to_vec()));
+                }
+                Operation::Write(buf) => {
+                    self.model.transaction(&mut [Operation::Write(buf)])?;
+                    self.expectations
+                        .push(SpiTransaction::write_vec(buf.to_vec()));
+                }
+                _ => return Err(device_model::ModelError),
+            }
+        }
+        self.expectations.push(SpiTransaction::transaction_end());
+        Ok(())
+    }
+}
+
+/// What `firmware/src/bin/driver.rs` prints.
+fn driver_output(o: &driver_demo::Outcome, transactions: u32) -> String {
+    format!(
+        "driver icm426xx samples={} bursts={} rails={} ticks={} {:08x} {:08x} {:08x} {:08x} refused={}\n\
+         driver spi-transactions={transactions}\ndriver done\n",
+        o.samples,
+        o.bursts,
+        o.rails,
+        o.ticks,
+        bits(o.q.w),
+        bits(o.q.x),
+        bits(o.q.y),
+        bits(o.q.z),
+        o.refused
+    )
+}
+
+#[test]
+fn driver_demo_matches_the_firmware_bit_for_bit_over_the_model_and_over_embedded_hal_mock() {
+    use device_model::{counts, packet, BURSTS, PACKET, SAMPLES, TICKS};
+    // 1. The driver over the scripted chip, recording the bus.
+    let recorder = Recorder {
+        model: device_model::Icm42688Model::new(),
+        expectations: Vec::new(),
+        transfers: Vec::new(),
+    };
+    let (o, recorder) = driver_demo::run(recorder, 10_000).expect("the driver reads the script");
+    assert_eq!(
+        recorder.model.served(),
+        (SAMPLES, true),
+        "every sample served and read"
+    );
+    assert_eq!(o.samples as usize, SAMPLES);
+    assert_eq!(o.refused, 0);
+    assert_eq!(o.rails, 1, "the one railed sample is flagged");
+    let ticks: u32 = (0..SAMPLES).map(|i| u32::from(TICKS[i & 1])).sum();
+    assert_eq!(o.ticks, ticks, "every packet's timestamp");
+    // The burst lengths the script gives, in order.
+    let mut lengths = Vec::new();
+    let mut left = SAMPLES;
+    for &b in BURSTS.iter().cycle() {
+        if left == 0 {
+            break;
+        }
+        lengths.push(b.min(left));
+        left -= b.min(left);
+    }
+    assert_eq!(o.bursts as usize, lengths.len());
+
+    // 2. The FIFO reads on the bus are the script's packets, burst by burst (INT_STATUS | 0x80 starts one).
+    let fifo_reads: Vec<&(Vec<u8>, Vec<u8>)> = recorder
+        .transfers
+        .iter()
+        .filter(|(sent, _)| sent[0] == 0xAD)
+        .collect();
+    assert_eq!(fifo_reads.len(), lengths.len());
+    let mut i = 0;
+    for ((_, got), &len) in fifo_reads.iter().zip(&lengths) {
+        let count = len * PACKET;
+        assert_eq!(&got[2..4], &[(count >> 8) as u8, count as u8], "FIFO count");
+        let want: Vec<u8> = (i..i + len).flat_map(packet).collect();
+        assert_eq!(&got[4..], &want[..], "burst at sample {i}");
+        i += len;
+    }
+
+    // 3. The same counts fed straight to the quick start in the same bursts: the driver changed nothing.
+    let mut direct = quickstart::Attitude::new().expect("starts");
+    let mut at = 0;
+    for &len in &lengths {
+        let burst: Vec<[i16; 3]> = (at..at + len).map(counts).collect();
+        direct.on_fifo(&burst);
+        at += len;
+    }
+    let (q, _) = direct.attitude();
+    assert_eq!(
+        [q.w, q.x, q.y, q.z].map(bits),
+        [o.q.w, o.q.x, o.q.y, o.q.z].map(bits),
+        "driver path vs raw counts"
+    );
+    assert!(q.norm_error().abs() < 1e-6);
+
+    // 4. The same driver over embedded-hal-mock, expecting exactly the recorded transactions.
+    let mock = SpiMock::new(&recorder.expectations);
+    let (replayed, mut mock) = driver_demo::run(mock, 10_000).expect("the driver reads the mock");
+    mock.done();
+    assert_eq!(
+        driver_output(&replayed, recorder.model.transactions()),
+        driver_output(&o, recorder.model.transactions()),
+        "embedded-hal-mock vs the model"
+    );
+
+    check_or_bless(
+        "driver.txt",
+        &driver_output(&o, recorder.model.transactions()),
+    );
 }

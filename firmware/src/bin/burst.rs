@@ -1,0 +1,211 @@
+//! FIFO bursts on the Cortex-M4F, counted with SysTick under QEMU `-icount shift=10` like `bench` (a program
+//! of its own, so the grid's figures keep `bench`'s code layout): `Propagator::push_burst` with a
+//! `FixedPeriod` (ExpMap + History + FirstOrder, Plain, f32) over bursts of 1, 8 and 32 samples against one
+//! `push` per sample, and the README quick start's `Attitude::on_fifo` fed FIFO reads of 1, 8 and 32.
+//!
+//! Each figure is (instructions of the loop over 256 samples − instructions of the same timed call over
+//! none) / 256: what a caller runs per sample, loop, `dt` and error check included. Every burst length must
+//! end on the attitude of the single pushes bit for bit (and every read length on the same quick-start
+//! attitude), or the program exits 1.
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use cortex_m_rt::entry;
+use quatprop::frontend::FixedPeriod;
+use quatprop::input::History;
+use quatprop::scheme::ExpMap;
+use quatprop::stabilize::FirstOrder;
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
+use quatprop_firmware::exit::{exit, fail};
+use quatprop_firmware::icount::Counter;
+use quatprop_firmware::quickstart::Attitude;
+
+/// The bench's 8 body rates (|omega| about 1.2 rad/s).
+fn rates() -> [Vec3<f32>; 8] {
+    let mut r = [Vec3::ZERO; 8];
+    for (i, w) in r.iter_mut().enumerate() {
+        let a = i as f32 * 0.7;
+        *w = Vec3::new(0.3 + 0.1 * a, -0.2 + 0.05 * a, 1.0 - 0.03 * a);
+    }
+    r
+}
+
+/// Samples in each burst measurement (a multiple of every burst length).
+const BURST_SAMPLES: usize = 256;
+/// Burst lengths measured.
+const BURST_LENGTHS: [usize; 3] = [1, 8, 32];
+
+type Recommended = Propagator<f32, ExpMap, History<f32>, FirstOrder>;
+
+/// The burst samples: 32 opaque body rates (the bench's 8, repeated).
+fn burst_samples() -> [GyroSample<f32>; 32] {
+    let w = rates();
+    let mut s = [GyroSample::default(); 32];
+    for (i, x) in s.iter_mut().enumerate() {
+        *x = GyroSample::new(w[i & 7]);
+    }
+    black_box(s)
+}
+
+/// `n` single pushes with a constant `dt`, errors ignored (the grid's loop).
+#[inline(never)]
+fn singles_const(
+    c: &Counter,
+    p: &mut Recommended,
+    s: &[GyroSample<f32>; 32],
+    dt: f32,
+    n: usize,
+) -> u32 {
+    let t0 = c.now();
+    for i in 0..n {
+        let _ = black_box(p.push(s[i & 31], dt));
+    }
+    Counter::instructions(Counter::ticks(t0, c.now()))
+}
+
+/// `n` single pushes doing what `push_burst` does per sample: `dt` from the period, and on a refusal the
+/// interval carried over and the refusal counted.
+#[inline(never)]
+fn singles_period(
+    c: &Counter,
+    p: &mut Recommended,
+    s: &[GyroSample<f32>; 32],
+    period: &mut FixedPeriod<f32>,
+    n: usize,
+) -> (u32, u32) {
+    let mut refused = 0;
+    let t0 = c.now();
+    for i in 0..n {
+        let dt = period.next_dt();
+        if p.push(s[i & 31], dt).is_err() {
+            period.carry_over(dt);
+            refused += 1;
+        }
+    }
+    (Counter::instructions(Counter::ticks(t0, c.now())), refused)
+}
+
+/// `bursts` calls of `push_burst` with `len` samples each (the same sample sequence as above).
+#[inline(never)]
+fn bursts(
+    c: &Counter,
+    p: &mut Recommended,
+    s: &[GyroSample<f32>; 32],
+    period: &mut FixedPeriod<f32>,
+    len: usize,
+    bursts: usize,
+) -> (u32, u32) {
+    let mut refused = 0;
+    let t0 = c.now();
+    for k in 0..bursts {
+        let at = (k * len) & 31;
+        let burst = s.get(at..at + len).unwrap_or(&[]);
+        if p.push_burst(burst, period).is_err() {
+            refused += 1;
+        }
+    }
+    (Counter::instructions(Counter::ticks(t0, c.now())), refused)
+}
+
+/// A warmed-up propagator and period (History full, one step taken).
+fn warmed(s: &[GyroSample<f32>; 32]) -> Option<(Recommended, FixedPeriod<f32>)> {
+    let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).ok()?;
+    let mut period = FixedPeriod::new(1.0e-3).ok()?;
+    p.push_burst(s.get(..4)?, &mut period).ok()?;
+    Some((p, period))
+}
+
+/// (instructions of the loop over `BURST_SAMPLES` samples − instructions of the same timed call over none)
+/// per sample, ×100: the loop, the `dt` and the error check count, as a caller pays them.
+fn per_sample_x100(total: u32, empty: u32) -> u32 {
+    (u64::from(total.saturating_sub(empty)) * 100 / BURST_SAMPLES as u64) as u32
+}
+
+fn report_burst(what: &str, len: usize, v: u32, identical: bool) {
+    defmt::println!(
+        "bench burst {=str} len={=usize} {=u32}.{=u32:02} identical={=bool}",
+        what,
+        len,
+        v / 100,
+        v % 100,
+        identical
+    );
+}
+
+/// Burst vs single pushes (ExpMap + History + FirstOrder, Plain); false if anything was refused or the bits
+/// differ.
+fn burst_figures(c: &Counter) -> bool {
+    let s = burst_samples();
+    let Some((mut p, _)) = warmed(&s) else {
+        return false;
+    };
+    let dt = black_box(1.0e-3_f32);
+    let empty = singles_const(c, &mut p, &s, dt, 0);
+    let v = per_sample_x100(singles_const(c, &mut p, &s, dt, BURST_SAMPLES), empty);
+    report_burst("push-const-dt", 1, v, true);
+    let Some((mut single, mut single_period)) = warmed(&s) else {
+        return false;
+    };
+    let (empty, _) = singles_period(c, &mut single, &s, &mut single_period, 0);
+    let (total, mut refused) =
+        singles_period(c, &mut single, &s, &mut single_period, BURST_SAMPLES);
+    report_burst("push-period", 1, per_sample_x100(total, empty), true);
+    for len in BURST_LENGTHS {
+        let Some((mut b, mut period)) = warmed(&s) else {
+            return false;
+        };
+        let (empty, _) = bursts(c, &mut b, &s, &mut period, len, 0);
+        let (total, r) = bursts(c, &mut b, &s, &mut period, len, BURST_SAMPLES / len);
+        refused += r;
+        // Bit for bit the attitude of the same samples pushed one at a time with the same period.
+        let same = b.attitude() == single.attitude() && b.steps() == single.steps();
+        report_burst("push_burst", len, per_sample_x100(total, empty), same);
+        refused += u32::from(!same);
+    }
+    refused == 0
+}
+
+/// The quick start fed `BURST_SAMPLES` raw samples in FIFO reads of 1, 8 and 32; false if a sample was
+/// refused or the attitudes differ.
+fn quickstart_bursts(c: &Counter, fifo: &[[i16; 3]; 32]) -> bool {
+    let mut ok = true;
+    let mut first = None;
+    for len in BURST_LENGTHS {
+        let Ok(mut attitude) = Attitude::new() else {
+            return false;
+        };
+        let t0 = c.now();
+        for k in 0..BURST_SAMPLES / len {
+            let at = (k * len) & 31;
+            attitude.on_fifo(black_box(fifo.get(at..at + len).unwrap_or(&[])));
+        }
+        let total = Counter::instructions(Counter::ticks(t0, c.now()));
+        let t0 = c.now();
+        let empty = Counter::instructions(Counter::ticks(t0, c.now()));
+        let (q, refused) = attitude.attitude();
+        // Any read length gives the same bits.
+        let same = q == *first.get_or_insert(q);
+        ok &= refused == 0 && same;
+        report_burst("quickstart", len, per_sample_x100(total, empty), same);
+    }
+    ok
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(cp) = cortex_m::Peripherals::take() else {
+        fail("peripherals")
+    };
+    let c = Counter::new(cp.SYST);
+    let mut ok = burst_figures(&c);
+    let w = rates();
+    let mut fifo = [[0i16; 3]; 32];
+    for (i, s) in fifo.iter_mut().enumerate() {
+        let r = w[i & 7];
+        *s = [r.x, r.y, r.z].map(|v| (v * 938.734_6) as i16); // counts at ±2000 °/s
+    }
+    ok &= quickstart_bursts(&c, &fifo);
+    defmt::println!("bench burst done");
+    exit(ok)
+}
