@@ -6,7 +6,7 @@ use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
 use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
 use quatprop::{Error, GyroSample, Propagator, Quat};
 
-/// Samples converted at a time (on the stack); a longer FIFO read is taken in batches of this size.
+/// Samples converted at a time; a longer FIFO read is taken in batches of this size.
 const BATCH: usize = 32;
 
 /// One attitude, fed from a gyro's FIFO: raw counts → body axes → bias removed → integrated.
@@ -16,6 +16,7 @@ pub struct Attitude {
     bias: BiasEstimator<f32>,
     period: FixedPeriod<f32>,
     propagator: Propagator<f32, ExpMap, History<f32>, FirstOrder>,
+    batch: [GyroSample<f32>; BATCH],
     refused: u32,
 }
 
@@ -29,6 +30,7 @@ impl Attitude {
             bias: BiasEstimator::new(1000, 0.05)?,
             period: FixedPeriod::new(1.0e-3)?,
             propagator: Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?,
+            batch: [GyroSample::default(); BATCH],
             refused: 0,
         })
     }
@@ -36,14 +38,13 @@ impl Attitude {
     /// Takes one FIFO read of raw counts `[x, y, z]` (sensor axes), one sample per period, any length.
     pub fn on_fifo(&mut self, fifo: &[[i16; 3]]) {
         for batch in fifo.chunks(BATCH) {
-            let mut body = [GyroSample::default(); BATCH];
-            for (slot, &counts) in body.iter_mut().zip(batch) {
+            for (slot, &counts) in self.batch.iter_mut().zip(batch) {
                 let sample = self.mounting.apply(self.scale.sample(counts));
                 // Counts are always finite, so the estimator never refuses them.
                 *slot = self.bias.update(sample).unwrap_or(sample);
             }
             // A refused sample stops the burst with the state as it was; its interval carries into the next.
-            let mut rest = body.get(..batch.len()).unwrap_or(&[]);
+            let mut rest = self.batch.get(..batch.len()).unwrap_or(&[]);
             while let Err(refused) = self.propagator.push_burst(rest, &mut self.period) {
                 self.refused += 1;
                 rest = rest.get(refused.index + 1..).unwrap_or(&[]);
