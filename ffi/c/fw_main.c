@@ -2,13 +2,25 @@
  * firmware, the attitude's bits printed in the same line (ffi/ci compares it with
  * firmware/expected/quickstart.txt), then the instructions per sample of on_fifo (SysTick under
  * `-icount shift=10`, as firmware/src/bin/bench.rs). Built twice: with the C API (default) and with
- * -DRUST_BASELINE, the Rust quick start's statically typed Attitude behind the same harness. */
+ * -DRUST_BASELINE, the Rust quick start's statically typed Attitude behind the same harness, and with
+ * -DRUST_KINDS, the same with the core's run-time SchemeKind and StabilizerKind. */
 #include <stdint.h>
 #include "board.h"
 #include "quickstart.h"
 #include "scene.h"
 
-#ifdef RUST_BASELINE
+#if defined(RUST_KINDS)
+uint32_t quatprop_baseline_kinds_init(quatprop_t *s);
+void quatprop_baseline_kinds_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
+void quatprop_baseline_kinds_attitude(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);
+#define NAME "kinds"
+static int start(quatprop_t *s) { return quatprop_baseline_kinds_init(s) == 1; }
+static void feed(quatprop_t *s, const int16_t (*f)[3], size_t n, uint32_t *refused) {
+    (void)refused;
+    quatprop_baseline_kinds_on_fifo(s, &f[0][0], n);
+}
+static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { quatprop_baseline_kinds_attitude(s, q, refused); }
+#elif defined(RUST_BASELINE)
 uint32_t quatprop_baseline_init(quatprop_t *s);
 void quatprop_baseline_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
 void quatprop_baseline_attitude(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);

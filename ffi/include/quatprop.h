@@ -737,32 +737,6 @@ quatprop_status_t quatprop_get_counters(const quatprop_t *s, quatprop_counters_t
  */
 const char *quatprop_status_name(int32_t status);
 
-/**
- * Writes a new `Attitude` into `s`; 1 on success.
- *
- * # Safety
- * `s` must be NULL or point to a writable `quatprop_t` not in use elsewhere.
- */
-uint32_t quatprop_baseline_init(quatprop_t *s);
-
-/**
- * `Attitude::on_fifo` on `n` samples `counts[3 * n]`.
- *
- * # Safety
- * `s` must point to a `quatprop_t` set up by `quatprop_baseline_init`; `counts` to `3 * n` int16s.
- */
-void quatprop_baseline_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
-
-/**
- * The attitude and the refused count.
- *
- * # Safety
- * `s` must point to a `quatprop_t` set up by `quatprop_baseline_init`; `out` and `refused` writable.
- */
-void quatprop_baseline_attitude(const quatprop_t *s,
-                                quatprop_quat_t *out,
-                                uint32_t *refused);
-
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus
