@@ -7,7 +7,6 @@
 #include "quickstart.h"
 #include "scene.h"
 
-quatprop_t *attitude_state(void);
 
 static unsigned passed, failed;
 #define CHECK(cond)                                                          \
@@ -34,7 +33,8 @@ static quatprop_config_t config(uint32_t input) {
 }
 
 static void quick_start(void) {
-    quatprop_t *att = attitude_state();
+    static quatprop_t state;
+    quatprop_t *att = &state;
     uint32_t refused = 0;
     int16_t burst[QUICKSTART_BURST][3];
     scene_t sc;

@@ -2,8 +2,7 @@
 #include "quatprop.h"
 
 /* One attitude, fed from a gyro's FIFO: raw counts -> body axes -> bias removed -> integrated.
- * The state lives wherever you put it (here: static); the library never allocates. */
-static quatprop_t att;
+ * The caller owns the state (e.g. `static quatprop_t att;`): the library never allocates. */
 
 /* A +-2000 deg/s, 16-bit gyro at 1 kHz, mounted turned 90 deg about z (body x = sensor y). */
 quatprop_status_t attitude_init(quatprop_t *att) {
@@ -31,6 +30,3 @@ void attitude_on_fifo(quatprop_t *att, const int16_t (*fifo)[3], size_t n, uint3
     }
 }
 /* quick start: end */
-
-/* For the tests and the firmware: the quick start's own static state. */
-quatprop_t *attitude_state(void) { return &att; }
