@@ -400,23 +400,46 @@ unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], quatprop_status
     Ok(unsafe { core::slice::from_raw_parts(p, n) })
 }
 
-/// The initialized state behind `s`.
+/// The state behind `s` if `quatprop_init` set it up.
 ///
 /// # Safety
-/// `s`, if non-null and aligned, must point to a `quatprop_t` that nothing else accesses during the call.
-unsafe fn state<'a>(s: *const quatprop_t) -> Result<&'a mut Inner, quatprop_status_t> {
+/// `s`, if non-null and aligned, must point to a `quatprop_t`.
+unsafe fn initialized(s: *const quatprop_t) -> Result<*const State, quatprop_status_t> {
     check(s)?;
-    let s = s.cast::<State>().cast_mut();
+    let s = s.cast::<State>();
     // SAFETY: non-null, aligned (checked; State's alignment is at most quatprop_t's, asserted above) and
     // within the block (State fits, asserted above). `magic` is a u32 at offset 0 (repr(C)): any bits are
     // a valid u32, and it is read before anything else.
     let magic = unsafe { core::ptr::addr_of!((*s).magic).read() };
-    if magic != MAGIC {
-        return Err(S::QUATPROP_NOT_INITIALIZED);
+    if magic == MAGIC {
+        Ok(s)
+    } else {
+        Err(S::QUATPROP_NOT_INITIALIZED)
     }
+}
+
+/// The initialized state behind `s`, to change.
+///
+/// # Safety
+/// `s`, if non-null and aligned, must point to a writable `quatprop_t` that nothing else accesses during
+/// the call.
+unsafe fn state<'a>(s: *mut quatprop_t) -> Result<&'a mut Inner, quatprop_status_t> {
+    // SAFETY: forwarded contract.
+    let st = unsafe { initialized(s) }?.cast_mut();
     // SAFETY: only `quatprop_init` writes MAGIC, together with a valid `Inner` (the caller must not write
     // the block by other means than copying a whole initialized state). Exclusive per the caller's contract.
-    Ok(unsafe { &mut (*s).inner })
+    Ok(unsafe { &mut (*st).inner })
+}
+
+/// The initialized state behind `s`, to read.
+///
+/// # Safety
+/// `s`, if non-null and aligned, must point to a `quatprop_t` that nothing writes during the call.
+unsafe fn state_ref<'a>(s: *const quatprop_t) -> Result<&'a Inner, quatprop_status_t> {
+    // SAFETY: forwarded contract.
+    let st = unsafe { initialized(s) }?;
+    // SAFETY: as in `state`; shared, and nothing writes it during the call per the caller's contract.
+    Ok(unsafe { &(*st).inner })
 }
 
 /// Runs `f` on the state behind `s`.
@@ -437,7 +460,7 @@ unsafe fn with(
 /// Runs `f` on the state behind `s` (read only) and writes its result to `out`.
 ///
 /// # Safety
-/// As [`state`] and [`write`].
+/// As [`state_ref`] and [`write`].
 unsafe fn get<T>(
     s: *const quatprop_t,
     out: *mut T,
@@ -447,7 +470,7 @@ unsafe fn get<T>(
         return e;
     }
     // SAFETY: forwarded contract.
-    match unsafe { state(s) } {
+    match unsafe { state_ref(s) } {
         // SAFETY: forwarded contract.
         Ok(inner) => unsafe { write(out, f(inner)) },
         Err(e) => e,
