@@ -1,0 +1,119 @@
+/* The C quick start on the Cortex-M4F (QEMU mps2-an386): the same raw-count stream as the Rust quick start
+ * firmware, the attitude's bits printed in the same line (ffi/ci compares it with
+ * firmware/expected/quickstart.txt), then the instructions per sample of on_fifo (SysTick under
+ * `-icount shift=10`, as firmware/src/bin/bench.rs). Built twice: with the C API (default) and with
+ * -DRUST_BASELINE, the Rust quick start's statically typed Attitude behind the same harness, and with
+ * -DRUST_KINDS, the same with the core's run-time SchemeKind and StabilizerKind. */
+#include <stdint.h>
+#include "board.h"
+#include "quickstart.h"
+#include "scene.h"
+
+#if defined(RUST_KINDS)
+uint32_t quatprop_baseline_kinds_init(quatprop_t *s);
+void quatprop_baseline_kinds_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
+void quatprop_baseline_kinds_attitude(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);
+#define NAME "kinds"
+static int start(quatprop_t *s) { return quatprop_baseline_kinds_init(s) == 1; }
+static void feed(quatprop_t *s, const int16_t (*f)[3], size_t n, uint32_t *refused) {
+    (void)refused;
+    quatprop_baseline_kinds_on_fifo(s, &f[0][0], n);
+}
+static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { quatprop_baseline_kinds_attitude(s, q, refused); }
+#elif defined(RUST_BASELINE)
+uint32_t quatprop_baseline_init(quatprop_t *s);
+void quatprop_baseline_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
+void quatprop_baseline_attitude(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);
+#define NAME "rust"
+static int start(quatprop_t *s) { return quatprop_baseline_init(s) == 1; }
+static void feed(quatprop_t *s, const int16_t (*f)[3], size_t n, uint32_t *refused) {
+    (void)refused;
+    quatprop_baseline_on_fifo(s, &f[0][0], n);
+}
+static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { quatprop_baseline_attitude(s, q, refused); }
+#else
+#define NAME "c"
+static int start(quatprop_t *s) { return attitude_init(s) == QUATPROP_OK; }
+static void feed(quatprop_t *s, const int16_t (*f)[3], size_t n, uint32_t *refused) { attitude_on_fifo(s, f, n, refused); }
+static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { quatprop_get_attitude(s, q); (void)refused; }
+#endif
+
+static char *put_str(char *p, const char *s) {
+    while (*s) *p++ = *s++;
+    return p;
+}
+static char *put_hex(char *p, uint32_t v) {
+    for (int i = 7; i >= 0; i--) *p++ = "0123456789abcdef"[(v >> (4 * i)) & 15];
+    return p;
+}
+static char *put_dec(char *p, uint32_t v) {
+    char t[10];
+    int n = 0;
+    do { t[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    while (n) *p++ = t[--n];
+    return p;
+}
+
+static quatprop_t att;
+/* Samples per measured run, in FIFO bursts of 32 (as the Rust firmware bench). */
+#define QS_SAMPLES 256u
+static int16_t fifo[32][3];
+
+static uint32_t timed(uint32_t bursts, uint32_t *refused) {
+    if (!start(&att)) return 0;
+    uint32_t t0 = board_counter_now();
+    for (uint32_t b = 0; b < bursts; b++) feed(&att, (const int16_t(*)[3])fifo, 32, refused);
+    return board_instructions(t0, board_counter_now());
+}
+
+int main(void) {
+    char line[160], *p;
+    uint32_t refused = 0;
+    int16_t burst[QUICKSTART_BURST][3];
+    scene_t sc;
+    if (!start(&att)) {
+        board_puts("quick start refused to start\n");
+        return 1;
+    }
+    scene_init(&sc);
+    uint32_t k = 0;
+    while (scene_next(&sc, burst)) {
+        feed(&att, (const int16_t(*)[3])burst, QUICKSTART_BURST, &refused);
+        /* Keep 32 coning samples for the bench (bursts 100 and 101). */
+        for (uint32_t i = 0; i < QUICKSTART_BURST; i++) {
+            uint32_t j = (k - 100) * QUICKSTART_BURST + i;
+            if (k >= 100 && j < 32)
+                for (int a = 0; a < 3; a++) fifo[j][a] = burst[i][a];
+        }
+        k++;
+    }
+    quatprop_quat_t q;
+    result(&att, &q, &refused);
+    p = put_str(line, "quickstart samples=");
+    p = put_dec(p, QUICKSTART_BURSTS * QUICKSTART_BURST);
+    const float c[4] = {q.w, q.x, q.y, q.z};
+    for (int i = 0; i < 4; i++) {
+        *p++ = ' ';
+        p = put_hex(p, scene_bits(c[i]));
+    }
+    p = put_str(p, " refused=");
+    p = put_dec(p, refused);
+    p = put_str(p, "\n");
+    *p = 0;
+    board_puts(line);
+
+    board_counter_start();
+    uint32_t r2 = 0;
+    uint32_t full = timed(QS_SAMPLES / 32, &r2), empty = timed(0, &r2);
+    uint32_t per = (uint32_t)((uint64_t)(full - empty) * 100u / QS_SAMPLES);
+    p = put_str(line, "bench " NAME " on_fifo per-sample ");
+    p = put_dec(p, per / 100);
+    *p++ = '.';
+    *p++ = (char)('0' + per / 10 % 10);
+    *p++ = (char)('0' + per % 10);
+    p = put_str(p, " (samples=256, bursts of 32)\n");
+    *p = 0;
+    board_puts(line);
+    board_puts("quickstart done\n");
+    return refused != 0 || r2 != 0;
+}

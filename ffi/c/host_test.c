@@ -1,0 +1,246 @@
+/* Host test of the C API (gcc): the quick start's attitude bits (compared by ffi/ci with the Rust quick
+ * start's, firmware/expected/quickstart.txt) and the error contract: every error has its code, NULL and
+ * bad enum values are refused, and the state's bytes are unchanged after every error. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "quickstart.h"
+#include "scene.h"
+
+
+static unsigned passed, failed;
+#define CHECK(cond)                                                          \
+    do {                                                                     \
+        if (cond) passed++;                                                  \
+        else { failed++; printf("FAIL %s:%d: %s\n", __FILE__, __LINE__, #cond); } \
+    } while (0)
+/* `call` returns `code` and leaves the state's bytes as they were. */
+#define REFUSED(st, call, code)                                              \
+    do {                                                                     \
+        quatprop_t before_;                                                  \
+        memcpy(&before_, (st), sizeof before_);                              \
+        quatprop_status_t got_ = (call);                                     \
+        if (got_ != (code)) printf("  got %s\n", quatprop_status_name((int32_t)got_)); \
+        CHECK(got_ == (code));                                               \
+        CHECK(memcmp(&before_, (st), sizeof before_) == 0);                  \
+    } while (0)
+
+static quatprop_config_t config(uint32_t input) {
+    quatprop_config_t c;
+    quatprop_config_default(&c);
+    c.input = input;
+    return c;
+}
+
+static void quick_start(void) {
+    static quatprop_t state;
+    quatprop_t *att = &state;
+    uint32_t refused = 0;
+    int16_t burst[QUICKSTART_BURST][3];
+    scene_t sc;
+    CHECK(attitude_init(att) == QUATPROP_OK);
+    scene_init(&sc);
+    while (scene_next(&sc, burst)) attitude_on_fifo(att, (const int16_t(*)[3])burst, QUICKSTART_BURST, &refused);
+    quatprop_quat_t q;
+    CHECK(quatprop_get_attitude(att, &q) == QUATPROP_OK);
+    printf("quickstart samples=%u %08x %08x %08x %08x refused=%u\n", QUICKSTART_BURSTS * QUICKSTART_BURST,
+           (unsigned)scene_bits(q.w), (unsigned)scene_bits(q.x), (unsigned)scene_bits(q.y),
+           (unsigned)scene_bits(q.z), (unsigned)refused);
+    quatprop_counters_t n;
+    CHECK(quatprop_get_counters(att, &n) == QUATPROP_OK);
+    CHECK(n.steps == 9999 && n.corrections == 9999 && n.saturated == 0 && n.bias_learned == 1);
+    float b[3];
+    CHECK(quatprop_get_bias(att, b) == QUATPROP_OK);
+    /* Bias (12, -3, 7) counts in sensor axes is (-3, -12, 7) counts in body axes. */
+    float k = (float)(2000.0 * 3.14159265358979 / 180.0 / 32768.0);
+    CHECK(fabsf(b[0] + 3 * k) < 1e-6f && fabsf(b[1] + 12 * k) < 1e-6f && fabsf(b[2] - 7 * k) < 1e-6f);
+}
+
+static void not_initialized_and_null(void) {
+    static quatprop_t zeroed; /* .bss: never initialized */
+    quatprop_quat_t q;
+    quatprop_sample_t w = {0, 0, 1, 0};
+    size_t n = 7;
+    REFUSED(&zeroed, quatprop_get_attitude(&zeroed, &q), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_push_rate(&zeroed, &w, 1e-3f), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_push_rate_burst(&zeroed, &w, 1, &n), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_set_fixed_period(&zeroed, 1e-3), QUATPROP_NOT_INITIALIZED);
+    CHECK(n == 7);
+    CHECK(quatprop_init(NULL, NULL) == QUATPROP_NULL_POINTER);
+    quatprop_t s;
+    quatprop_config_t c = config(QUATPROP_INPUT_HISTORY);
+    CHECK(quatprop_init(&s, NULL) == QUATPROP_NULL_POINTER);
+    CHECK(quatprop_init(NULL, &c) == QUATPROP_NULL_POINTER);
+    CHECK(quatprop_init(&s, &c) == QUATPROP_OK);
+    REFUSED(&s, quatprop_get_attitude(&s, NULL), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_get_attitude(NULL, &q) == QUATPROP_NULL_POINTER);
+    REFUSED(&s, quatprop_push_rate(&s, NULL, 1e-3f), QUATPROP_NULL_POINTER);
+    REFUSED(&s, quatprop_push_rate_burst(&s, NULL, 0, &n), QUATPROP_NULL_POINTER);
+    REFUSED(&s, quatprop_push_rate_burst(&s, &w, 1, NULL), QUATPROP_NULL_POINTER);
+    REFUSED(&s, quatprop_set_fixed_bias(&s, NULL), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_config_default(NULL) == QUATPROP_NULL_POINTER);
+    /* A misaligned pointer is refused, not dereferenced. */
+    _Alignas(4) unsigned char raw[16] = {0};
+    REFUSED(&s, quatprop_push_counts(&s, (const int16_t *)(raw + 1), 1e-3f), QUATPROP_MISALIGNED_POINTER);
+    REFUSED(&s, quatprop_get_attitude((const quatprop_t *)(raw + 4), &q), QUATPROP_MISALIGNED_POINTER);
+}
+
+static void bad_configuration(void) {
+    quatprop_t s;
+    quatprop_config_t c = config(QUATPROP_INPUT_HISTORY);
+    CHECK(quatprop_init(&s, &c) == QUATPROP_OK);
+    quatprop_config_t bad;
+    bad = c; bad.scheme = 8;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
+    bad = c; bad.stabilizer = 4;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
+    bad = c; bad.input = 6;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
+    bad = c; bad.accumulator = 2;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
+    bad = c; bad.input = QUATPROP_INPUT_DELTA_ANGLES; bad.coning = 6;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
+    bad = c; bad.scheme = 0xffffffffu;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
+    bad = c; bad.stabilizer = QUATPROP_STABILIZER_EVERY; bad.every = 0;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_INVALID_STABILIZER);
+    bad = c; bad.q0.w = 0.0f;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_ZERO_QUATERNION);
+    bad = c; bad.q0.x = NAN;
+    REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_NON_FINITE_QUATERNION);
+    REFUSED(&s, quatprop_set_axis_remap(&s, 24), QUATPROP_BAD_ENUM);
+    const float shear[9] = {1, 0.1f, 0, 0, 1, 0, 0, 0, 1};
+    REFUSED(&s, quatprop_set_alignment_matrix(&s, shear), QUATPROP_NOT_A_ROTATION);
+    const float mirror[9] = {-1, 0, 0, 0, 1, 0, 0, 0, 1};
+    REFUSED(&s, quatprop_set_alignment_matrix(&s, mirror), QUATPROP_NOT_A_ROTATION);
+    REFUSED(&s, quatprop_set_bias_estimator(&s, 0, 0.05f, 64), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&s, quatprop_set_bias_estimator(&s, 1000, NAN, 64), QUATPROP_INVALID_ESTIMATOR);
+    const float nan_bias[3] = {0, NAN, 0};
+    REFUSED(&s, quatprop_set_fixed_bias(&s, nan_bias), QUATPROP_NON_FINITE_RATE);
+    REFUSED(&s, quatprop_set_tick_clock(&s, 1e6, 33), QUATPROP_INVALID_CLOCK);
+    REFUSED(&s, quatprop_set_tick_clock(&s, -1.0, 32), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&s, quatprop_set_fixed_period(&s, 0.0), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&s, quatprop_set_fixed_period(&s, INFINITY), QUATPROP_NON_FINITE_STEP);
+    REFUSED(&s, quatprop_set_count_scale_dps(&s, -2000.0), QUATPROP_BAD_ARGUMENT);
+    REFUSED(&s, quatprop_set_count_sensitivity(&s, NAN), QUATPROP_BAD_ARGUMENT);
+    quatprop_quat_t zero = {0, 0, 0, 0};
+    REFUSED(&s, quatprop_set_attitude(&s, &zero), QUATPROP_ZERO_QUATERNION);
+    CHECK(strcmp(quatprop_status_name(QUATPROP_OK), "QUATPROP_OK") == 0);
+    CHECK(strcmp(quatprop_status_name(QUATPROP_BAD_ENUM), "QUATPROP_BAD_ENUM") == 0);
+    CHECK(strcmp(quatprop_status_name(999), "unknown status") == 0);
+}
+
+static void refused_samples(void) {
+    quatprop_t s;
+    quatprop_config_t c = config(QUATPROP_INPUT_HISTORY);
+    CHECK(quatprop_init(&s, &c) == QUATPROP_OK);
+    quatprop_sample_t w = {0, 0, 1, 0}, nan = {0, NAN, 1, 0}, fast = {0, 0, 1e6f, 0};
+    for (int i = 0; i < 3; i++) CHECK(quatprop_push_rate(&s, &w, 1e-3f) == QUATPROP_OK);
+    REFUSED(&s, quatprop_push_rate(&s, &nan, 1e-3f), QUATPROP_NON_FINITE_RATE);
+    REFUSED(&s, quatprop_push_rate(&s, &w, 0.0f), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&s, quatprop_push_rate(&s, &w, -1e-3f), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&s, quatprop_push_rate(&s, &w, NAN), QUATPROP_NON_FINITE_STEP);
+    REFUSED(&s, quatprop_push_rate(&s, &w, INFINITY), QUATPROP_NON_FINITE_STEP);
+    /* ExpMap takes any step angle; RK4 refuses one beyond its stability bound (2.83 rad). */
+    quatprop_t r4;
+    quatprop_config_t c4 = c;
+    c4.scheme = QUATPROP_SCHEME_RK4;
+    CHECK(quatprop_init(&r4, &c4) == QUATPROP_OK);
+    for (int i = 0; i < 3; i++) CHECK(quatprop_push_rate(&r4, &w, 1e-3f) == QUATPROP_OK);
+    REFUSED(&r4, quatprop_push_rate(&r4, &fast, 1e-3f), QUATPROP_STEP_ANGLE_BEYOND_STABILITY);
+    const quatprop_sample_t d = {0, 0, 1e-3f, 0};
+    REFUSED(&s, quatprop_push_delta(&s, &d, 1e-3f), QUATPROP_WRONG_INPUT_KIND);
+    size_t n = 9;
+    REFUSED(&s, quatprop_push_rate_burst(&s, &w, 1, &n), QUATPROP_NOT_CONFIGURED);
+    CHECK(n == 0);
+    const int16_t counts[3] = {0, 0, 100};
+    REFUSED(&s, quatprop_push_counts(&s, counts, 1e-3f), QUATPROP_NOT_CONFIGURED);
+    quatprop_counters_t k;
+    CHECK(quatprop_get_counters(&s, &k) == QUATPROP_OK && k.steps == 2);
+
+    /* A burst with a NaN at index 5: stops there, 5 integrated; the rest goes on and covers the interval. */
+    quatprop_sample_t burst[32];
+    for (int i = 0; i < 32; i++) burst[i] = w;
+    burst[5] = nan;
+    quatprop_t b;
+    CHECK(quatprop_init(&b, &c) == QUATPROP_OK && quatprop_set_fixed_period(&b, 1e-3) == QUATPROP_OK);
+    CHECK(quatprop_push_rate_burst(&b, burst, 32, &n) == QUATPROP_NON_FINITE_RATE && n == 5);
+    CHECK(quatprop_push_rate_burst(&b, burst + 6, 26, &n) == QUATPROP_OK && n == 26);
+    quatprop_quat_t q;
+    CHECK(quatprop_get_attitude(&b, &q) == QUATPROP_OK);
+    float yaw = 2.0f * atan2f(q.z, q.w); /* 31 intervals of 1 ms at 1 rad/s */
+    CHECK(fabsf(yaw - 31e-3f) < 1e-7f);
+    quatprop_euler_zyx_t e;
+    CHECK(quatprop_get_euler_zyx(&b, &e) == QUATPROP_OK && fabsf(e.yaw - 31e-3f) < 1e-7f && e.pitch == 0.0f);
+    float ne;
+    CHECK(quatprop_get_norm_error(&b, &ne) == QUATPROP_OK && fabsf(ne) < 1e-6f);
+
+    /* A copy of a state goes on exactly as the original. */
+    quatprop_t copy;
+    memcpy(&copy, &b, sizeof copy);
+    CHECK(quatprop_push_rate_burst(&b, burst, 5, &n) == QUATPROP_OK);
+    CHECK(quatprop_push_rate_burst(&copy, burst, 5, &n) == QUATPROP_OK);
+    CHECK(memcmp(&copy, &b, sizeof b) == 0);
+
+    /* Timed burst: a repeated timestamp is refused at its index; the clock stays at the last accepted. */
+    quatprop_t t;
+    CHECK(quatprop_init(&t, &c) == QUATPROP_OK && quatprop_set_count_scale_dps(&t, 2000.0) == QUATPROP_OK);
+    CHECK(quatprop_set_tick_clock(&t, 1e6, 32) == QUATPROP_OK);
+    const int16_t fifo[5][3] = {{0, 0, 939}, {0, 0, 939}, {0, 0, 939}, {0, 0, 939}, {0, 0, 939}};
+    const uint32_t ts[5] = {0, 1000, 2000, 2000, 4000};
+    CHECK(quatprop_push_counts_burst_timed(&t, &fifo[0][0], ts, 5, &n) == QUATPROP_TIMESTAMP_NOT_INCREASING && n == 3);
+    CHECK(quatprop_push_counts_burst_timed(&t, &fifo[4][0], ts + 4, 1, &n) == QUATPROP_OK && n == 1);
+    CHECK(quatprop_get_counters(&t, &k) == QUATPROP_OK && k.steps == 3);
+
+    /* Saturated counts are integrated and counted. */
+    const int16_t rail[3] = {32767, 0, 0};
+    CHECK(quatprop_push_counts(&t, rail, 1e-6f) == QUATPROP_OK);
+    CHECK(quatprop_get_counters(&t, &k) == QUATPROP_OK && k.saturated == 1);
+}
+
+static void delta_angles_and_kahan(void) {
+    quatprop_t s;
+    quatprop_config_t c = config(QUATPROP_INPUT_DELTA_ANGLES);
+    c.coning = QUATPROP_CONING_TWO_SAMPLE;
+    c.accumulator = QUATPROP_ACCUMULATOR_KAHAN;
+    CHECK(quatprop_init(&s, &c) == QUATPROP_OK && quatprop_set_fixed_period(&s, 1e-3) == QUATPROP_OK);
+    quatprop_sample_t d[40];
+    for (int i = 0; i < 40; i++) d[i] = (quatprop_sample_t){0, 0, 1e-3f, 0};
+    size_t n;
+    quatprop_sample_t w = {0, 0, 1, 0};
+    REFUSED(&s, quatprop_push_rate(&s, &w, 1e-3f), QUATPROP_WRONG_INPUT_KIND);
+    REFUSED(&s, quatprop_push_rate_burst(&s, &w, 1, &n), QUATPROP_WRONG_INPUT_KIND);
+    CHECK(quatprop_push_delta_burst(&s, d, 40, &n) == QUATPROP_OK && n == 40);
+    quatprop_euler_zyx_t e;
+    CHECK(quatprop_get_euler_zyx(&s, &e) == QUATPROP_OK && fabsf(e.yaw - 40e-3f) < 1e-6f);
+    d[33].y = INFINITY;
+    CHECK(quatprop_push_delta_burst(&s, d, 40, &n) == QUATPROP_NON_FINITE_RATE && n == 33);
+    /* Every configuration initializes and integrates. */
+    for (uint32_t in = 0; in <= QUATPROP_INPUT_DELTA_ANGLES; in++)
+        for (uint32_t sc = 0; sc <= QUATPROP_SCHEME_CF4; sc++)
+            for (uint32_t acc = 0; acc <= QUATPROP_ACCUMULATOR_KAHAN; acc++) {
+                quatprop_config_t k = config(in);
+                k.scheme = sc;
+                k.accumulator = acc;
+                k.stabilizer = QUATPROP_STABILIZER_EVERY;
+                k.every = 3;
+                int ok = quatprop_init(&s, &k) == QUATPROP_OK && quatprop_set_fixed_period(&s, 1e-3) == QUATPROP_OK;
+                ok = ok && (in == QUATPROP_INPUT_DELTA_ANGLES ? quatprop_push_delta_burst(&s, d, 20, &n)
+                                                              : quatprop_push_rate_burst(&s, d, 20, &n)) == QUATPROP_OK;
+                quatprop_euler_zxz_t z;
+                ok = ok && quatprop_get_euler_zxz(&s, &z) == QUATPROP_OK && z.theta == z.theta;
+                CHECK(ok);
+            }
+}
+
+int main(void) {
+    quick_start();
+    not_initialized_and_null();
+    bad_configuration();
+    refused_samples();
+    delta_angles_and_kahan();
+    printf("state %u bytes, align %u\n", (unsigned)sizeof(quatprop_t), (unsigned)_Alignof(quatprop_t));
+    CHECK(sizeof(quatprop_t) == QUATPROP_STATE_SIZE && _Alignof(quatprop_t) == QUATPROP_STATE_ALIGN);
+    printf("c-api: %u passed, %u failed\n", passed, failed);
+    return failed != 0;
+}

@@ -1,0 +1,205 @@
+//! The Rust quick start with its static types (feature `rust-baseline`, tests and figures only): the
+//! README's `Attitude`, verbatim from firmware/src/quickstart.rs, behind three C functions, so the C
+//! firmware harness can time the statically typed Rust code against the C API's run-time dispatch with
+//! the same compiler, startup and measurement.
+
+mod quickstart {
+    include!("../../firmware/src/quickstart.rs");
+}
+use crate::{check, quatprop_quat_t, quatprop_t};
+use quickstart::Attitude;
+
+const _: () = assert!(core::mem::size_of::<Attitude>() <= core::mem::size_of::<quatprop_t>());
+const _: () = assert!(core::mem::align_of::<Attitude>() <= core::mem::align_of::<quatprop_t>());
+
+/// Writes a new `Attitude` into `s`; 1 on success.
+///
+/// # Safety
+/// `s` must be NULL or point to a writable `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_baseline_init(s: *mut quatprop_t) -> u32 {
+    match (check(s), Attitude::new()) {
+        (Ok(()), Ok(a)) => {
+            // SAFETY: non-null and aligned (checked), writable per the contract; Attitude fits (asserted).
+            unsafe { s.cast::<Attitude>().write(a) };
+            1
+        }
+        _ => 0,
+    }
+}
+
+/// `Attitude::on_fifo` on `n` samples `counts[3 * n]`.
+///
+/// # Safety
+/// `s` must point to a `quatprop_t` set up by `quatprop_baseline_init`; `counts` to `3 * n` int16s.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_baseline_on_fifo(
+    s: *mut quatprop_t,
+    counts: *const i16,
+    n: usize,
+) {
+    if check(s).is_err() || check(counts).is_err() {
+        return;
+    }
+    // SAFETY: checked non-null and aligned; initialized and exclusive, `3 * n` readable per the contract.
+    let (a, fifo) = unsafe {
+        (
+            &mut *s.cast::<Attitude>(),
+            core::slice::from_raw_parts(counts.cast::<[i16; 3]>(), n),
+        )
+    };
+    a.on_fifo(fifo);
+}
+
+/// The attitude and the refused count.
+///
+/// # Safety
+/// `s` must point to a `quatprop_t` set up by `quatprop_baseline_init`; `out` and `refused` writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_baseline_attitude(
+    s: *const quatprop_t,
+    out: *mut quatprop_quat_t,
+    refused: *mut u32,
+) {
+    if check(s).is_err() || check(out).is_err() || check(refused).is_err() {
+        return;
+    }
+    // SAFETY: checked non-null and aligned; initialized, `out`/`refused` writable per the contract.
+    unsafe {
+        let (q, r) = (*s.cast::<Attitude>()).attitude();
+        out.write(quatprop_quat_t {
+            w: q.w,
+            x: q.x,
+            y: q.y,
+            z: q.z,
+        });
+        refused.write(r);
+    }
+}
+
+/// The quick start's `Attitude` with the core's own run-time scheme and stabilizer (`SchemeKind`,
+/// `StabilizerKind`) and everything else static: splits the C API's cost into the core's run-time dispatch
+/// and the C layer's own.
+mod kinds {
+    use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
+    use quatprop::scheme::SchemeKind;
+    use quatprop::stabilize::StabilizerKind;
+    use quatprop::{input::History, Error, GyroSample, Propagator, Quat};
+
+    const BATCH: usize = 32;
+
+    pub struct KindAttitude {
+        scale: CountScale<f32>,
+        mounting: AxisRemap,
+        bias: BiasEstimator<f32>,
+        period: FixedPeriod<f32>,
+        propagator: Propagator<f32, SchemeKind, History<f32>, StabilizerKind>,
+        refused: u32,
+    }
+
+    impl KindAttitude {
+        pub fn new() -> Result<Self, Error> {
+            Ok(Self {
+                scale: CountScale::full_scale_dps(2000.0),
+                mounting: AxisRemap::PyNxPz,
+                bias: BiasEstimator::new(1000, 0.05)?,
+                period: FixedPeriod::new(1.0e-3)?,
+                propagator: Propagator::new(
+                    Quat::IDENTITY,
+                    SchemeKind::ExpMap,
+                    History::new(),
+                    StabilizerKind::FirstOrder,
+                )?,
+                refused: 0,
+            })
+        }
+
+        pub fn on_fifo(&mut self, fifo: &[[i16; 3]]) {
+            for batch in fifo.chunks(BATCH) {
+                let mut body = [GyroSample::default(); BATCH];
+                for (slot, &counts) in body.iter_mut().zip(batch) {
+                    let sample = self.mounting.apply(self.scale.sample(counts));
+                    *slot = self.bias.update(sample).unwrap_or(sample);
+                }
+                let mut rest = body.get(..batch.len()).unwrap_or(&[]);
+                while let Err(refused) = self.propagator.push_burst(rest, &mut self.period) {
+                    self.refused += 1;
+                    rest = rest.get(refused.index + 1..).unwrap_or(&[]);
+                }
+            }
+        }
+
+        pub fn attitude(&self) -> (Quat<f32>, u32) {
+            (self.propagator.attitude(), self.refused)
+        }
+    }
+}
+use kinds::KindAttitude;
+
+const _: () = assert!(core::mem::size_of::<KindAttitude>() <= core::mem::size_of::<quatprop_t>());
+const _: () = assert!(core::mem::align_of::<KindAttitude>() <= core::mem::align_of::<quatprop_t>());
+
+/// `quatprop_baseline_init` with the run-time scheme and stabilizer.
+///
+/// # Safety
+/// As `quatprop_baseline_init`.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_baseline_kinds_init(s: *mut quatprop_t) -> u32 {
+    match (check(s), KindAttitude::new()) {
+        (Ok(()), Ok(a)) => {
+            // SAFETY: non-null and aligned (checked), writable per the contract; it fits (asserted).
+            unsafe { s.cast::<KindAttitude>().write(a) };
+            1
+        }
+        _ => 0,
+    }
+}
+
+/// `quatprop_baseline_on_fifo` with the run-time scheme and stabilizer.
+///
+/// # Safety
+/// As `quatprop_baseline_on_fifo`, the state set up by `quatprop_baseline_kinds_init`.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_baseline_kinds_on_fifo(
+    s: *mut quatprop_t,
+    counts: *const i16,
+    n: usize,
+) {
+    if check(s).is_err() || check(counts).is_err() {
+        return;
+    }
+    // SAFETY: checked non-null and aligned; initialized and exclusive, `3 * n` readable per the contract.
+    let (a, fifo) = unsafe {
+        (
+            &mut *s.cast::<KindAttitude>(),
+            core::slice::from_raw_parts(counts.cast::<[i16; 3]>(), n),
+        )
+    };
+    a.on_fifo(fifo);
+}
+
+/// `quatprop_baseline_attitude` with the run-time scheme and stabilizer.
+///
+/// # Safety
+/// As `quatprop_baseline_attitude`, the state set up by `quatprop_baseline_kinds_init`.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_baseline_kinds_attitude(
+    s: *const quatprop_t,
+    out: *mut quatprop_quat_t,
+    refused: *mut u32,
+) {
+    if check(s).is_err() || check(out).is_err() || check(refused).is_err() {
+        return;
+    }
+    // SAFETY: checked non-null and aligned; initialized, `out`/`refused` writable per the contract.
+    unsafe {
+        let (q, r) = (*s.cast::<KindAttitude>()).attitude();
+        out.write(quatprop_quat_t {
+            w: q.w,
+            x: q.x,
+            y: q.y,
+            z: q.z,
+        });
+        refused.write(r);
+    }
+}

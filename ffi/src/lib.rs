@@ -1,0 +1,1204 @@
+//! # quatprop C API
+//!
+//! Integrates gyroscope samples into an attitude quaternion (single precision, `float`).
+//!
+//! Conventions: Hamilton quaternions, scalar first (`w, x, y, z`); the attitude maps body to reference;
+//! rates are body-frame (after the alignment) in rad/s, angles in rad, times in s.
+//!
+//! Memory: `quatprop_t` is an opaque block of `QUATPROP_STATE_SIZE` bytes aligned to `QUATPROP_STATE_ALIGN`
+//! that the caller allocates (statically, on the stack, anywhere); the library never allocates. It may be
+//! copied with `memcpy`. A state that `quatprop_init` did not set up (e.g. a zeroed `static`) is refused
+//! with `QUATPROP_NOT_INITIALIZED`.
+//!
+//! Errors: every function returns a `quatprop_status_t`; `QUATPROP_OK` (0) is success. Values 1 to 15
+//! mirror the Rust `quatprop::Error` variants, values from 100 are the C boundary's own. A NULL or
+//! misaligned pointer and an out-of-range enum value get an error code, never undefined behaviour; on any
+//! error the state is unchanged (bursts: see `quatprop_push_counts_burst`). No panic can cross the boundary:
+//! the library's panic handler calls the undefined symbol `quatprop_ffi_panic_is_reachable`, so a firmware
+//! linked with `--gc-sections` fails to link if any panic path is reachable from what it calls.
+//!
+//! Not thread-safe per state: one state must not be used from two contexts (e.g. main and an ISR) at once.
+#![cfg_attr(not(test), no_std)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![warn(missing_docs, rust_2018_idioms)]
+#![allow(non_camel_case_types)]
+
+#[cfg(feature = "rust-baseline")]
+mod baseline;
+mod state;
+#[cfg(test)]
+mod tests;
+
+use core::mem::{align_of, size_of};
+use quatprop::frontend::{Alignment, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock};
+use quatprop::{DeltaAngle, Error, GyroSample, Quat};
+use state::{counts_sample, remap_of, vec3, Bias, Choice, Fail, Inner};
+
+/// Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
+pub const QUATPROP_ABI_VERSION: u32 = 1;
+/// `uint64_t` words in `quatprop_t`.
+pub const QUATPROP_STATE_WORDS: usize = 48;
+/// Size of `quatprop_t` in bytes (same on every target).
+pub const QUATPROP_STATE_SIZE: usize = 384;
+/// Alignment of `quatprop_t` in bytes.
+pub const QUATPROP_STATE_ALIGN: usize = 8;
+
+/// The opaque state. Allocate it anywhere (no heap needed), set it up with `quatprop_init`; never read or
+/// write `_opaque` (a copy of a whole initialized state is fine). 8-byte aligned: `uint64_t` is, on every
+/// supported target (asserted).
+#[repr(C)]
+pub struct quatprop_t {
+    /// Private.
+    pub _opaque: [u64; QUATPROP_STATE_WORDS],
+}
+
+/// The Rust state behind `quatprop_t`: the tag first, so it can be read before anything else.
+#[repr(C)]
+struct State {
+    magic: u32,
+    inner: Inner,
+}
+
+/// "QPF1": the tag `quatprop_init` writes.
+const MAGIC: u32 = 0x5150_4631;
+
+// The Rust state fits the C block on every target, and the documented size is the block's.
+const _: () = assert!(size_of::<State>() <= size_of::<quatprop_t>());
+const _: () = assert!(align_of::<State>() <= align_of::<quatprop_t>());
+const _: () = assert!(size_of::<quatprop_t>() == QUATPROP_STATE_SIZE);
+const _: () = assert!(align_of::<quatprop_t>() == QUATPROP_STATE_ALIGN);
+const _: () = assert!(QUATPROP_STATE_WORDS * 8 == QUATPROP_STATE_SIZE);
+
+/// Result of every call. Values are fixed (ABI); 1 to 15 mirror `quatprop::Error`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum quatprop_status_t {
+    /// Success.
+    QUATPROP_OK = 0,
+    /// A rate or angle sample (or a bias) is NaN or infinite.
+    QUATPROP_NON_FINITE_RATE = 1,
+    /// A time step (or period, or clock frequency) is NaN or infinite.
+    QUATPROP_NON_FINITE_STEP = 2,
+    /// A time step (or period, or clock frequency) is zero or negative.
+    QUATPROP_NON_POSITIVE_STEP = 3,
+    /// The step angle |w|·dt exceeds the scheme's stability bound.
+    QUATPROP_STEP_ANGLE_BEYOND_STABILITY = 4,
+    /// Baumgarte gain beyond the scheme's bound (not reachable from C: no Baumgarte scheme here).
+    QUATPROP_GAIN_BEYOND_STABILITY = 5,
+    /// The quaternion is zero.
+    QUATPROP_ZERO_QUATERNION = 6,
+    /// The quaternion is NaN or infinite.
+    QUATPROP_NON_FINITE_QUATERNION = 7,
+    /// Stabilizer EVERY with n = 0.
+    QUATPROP_INVALID_STABILIZER = 8,
+    /// Invalid Baumgarte gain (not reachable from C).
+    QUATPROP_INVALID_GAIN = 9,
+    /// The alignment matrix is not a rotation.
+    QUATPROP_NOT_A_ROTATION = 10,
+    /// A timestamp does not advance (duplicate or backwards).
+    QUATPROP_TIMESTAMP_NOT_INCREASING = 11,
+    /// Clock counter width outside 1 to 32 bits.
+    QUATPROP_INVALID_CLOCK = 12,
+    /// Bias estimator: window and memory must be positive, the gate finite and positive.
+    QUATPROP_INVALID_ESTIMATOR = 13,
+    /// The step overflowed to a non-finite attitude.
+    QUATPROP_NON_FINITE_RESULT = 14,
+    /// A core error this version of the C API does not name.
+    QUATPROP_UNKNOWN_ERROR = 15,
+    /// A pointer argument is NULL.
+    QUATPROP_NULL_POINTER = 100,
+    /// A pointer argument is not aligned for its type.
+    QUATPROP_MISALIGNED_POINTER = 101,
+    /// An enum argument (scheme, stabilizer, input, coning, accumulator, axis remap) is out of range.
+    QUATPROP_BAD_ENUM = 102,
+    /// The state was not set up by `quatprop_init` (e.g. a zeroed static).
+    QUATPROP_NOT_INITIALIZED = 103,
+    /// A rate call on the delta-angle input model, or a delta-angle call on a rate model.
+    QUATPROP_WRONG_INPUT_KIND = 104,
+    /// The call needs a front-end part that was not set: count scale, fixed period or tick clock.
+    QUATPROP_NOT_CONFIGURED = 105,
+    /// A numeric argument out of range (count scale not finite and positive).
+    QUATPROP_BAD_ARGUMENT = 106,
+}
+
+use quatprop_status_t as S;
+
+fn status(f: Fail) -> quatprop_status_t {
+    match f {
+        Fail::Core(e) => match e {
+            Error::NonFiniteRate => S::QUATPROP_NON_FINITE_RATE,
+            Error::NonFiniteStep => S::QUATPROP_NON_FINITE_STEP,
+            Error::NonPositiveStep => S::QUATPROP_NON_POSITIVE_STEP,
+            Error::StepAngleBeyondStability { .. } => S::QUATPROP_STEP_ANGLE_BEYOND_STABILITY,
+            Error::GainBeyondStability { .. } => S::QUATPROP_GAIN_BEYOND_STABILITY,
+            Error::ZeroQuaternion => S::QUATPROP_ZERO_QUATERNION,
+            Error::NonFiniteQuaternion => S::QUATPROP_NON_FINITE_QUATERNION,
+            Error::InvalidStabilizer => S::QUATPROP_INVALID_STABILIZER,
+            Error::InvalidGain => S::QUATPROP_INVALID_GAIN,
+            Error::NotARotation => S::QUATPROP_NOT_A_ROTATION,
+            Error::TimestampNotIncreasing => S::QUATPROP_TIMESTAMP_NOT_INCREASING,
+            Error::InvalidClock => S::QUATPROP_INVALID_CLOCK,
+            Error::InvalidEstimator => S::QUATPROP_INVALID_ESTIMATOR,
+            Error::NonFiniteResult => S::QUATPROP_NON_FINITE_RESULT,
+            _ => S::QUATPROP_UNKNOWN_ERROR,
+        },
+        Fail::BadEnum => S::QUATPROP_BAD_ENUM,
+        Fail::BadArgument => S::QUATPROP_BAD_ARGUMENT,
+        Fail::WrongInputKind => S::QUATPROP_WRONG_INPUT_KIND,
+        Fail::NotConfigured => S::QUATPROP_NOT_CONFIGURED,
+    }
+}
+
+fn done(r: Result<(), Fail>) -> quatprop_status_t {
+    match r {
+        Ok(()) => S::QUATPROP_OK,
+        Err(f) => status(f),
+    }
+}
+
+/// Explicit Euler (`quatprop_config_t::scheme`).
+pub const QUATPROP_SCHEME_EULER: u32 = 0;
+/// Heun's second-order Runge–Kutta.
+pub const QUATPROP_SCHEME_RK2: u32 = 1;
+/// Kutta's third-order Runge–Kutta.
+pub const QUATPROP_SCHEME_RK3: u32 = 2;
+/// Classical fourth-order Runge–Kutta.
+pub const QUATPROP_SCHEME_RK4: u32 = 3;
+/// Fifth-order Runge–Kutta.
+pub const QUATPROP_SCHEME_RK5: u32 = 4;
+/// Exponential map of the step's rotation vector (recommended).
+pub const QUATPROP_SCHEME_EXPMAP: u32 = 5;
+/// Fourth-order Magnus.
+pub const QUATPROP_SCHEME_MAGNUS4: u32 = 6;
+/// Fourth-order commutator-free.
+pub const QUATPROP_SCHEME_CF4: u32 = 7;
+
+/// No stabilization (`quatprop_config_t::stabilizer`).
+pub const QUATPROP_STABILIZER_OFF: u32 = 0;
+/// Exact normalization every step.
+pub const QUATPROP_STABILIZER_NORMALIZE: u32 = 1;
+/// First-order normalization every step (recommended).
+pub const QUATPROP_STABILIZER_FIRST_ORDER: u32 = 2;
+/// Exact normalization every `every` steps.
+pub const QUATPROP_STABILIZER_EVERY: u32 = 3;
+
+/// Rate held over the step (`quatprop_config_t::input`).
+pub const QUATPROP_INPUT_HOLD: u32 = 0;
+/// Rate linear between consecutive samples.
+pub const QUATPROP_INPUT_LINEAR: u32 = 1;
+/// Rate interpolated through the last samples (recommended).
+pub const QUATPROP_INPUT_HISTORY: u32 = 2;
+/// Two samples per step (sensor at twice the step rate).
+pub const QUATPROP_INPUT_TWICE_RATE: u32 = 3;
+/// Two samples per step at the Gauss points.
+pub const QUATPROP_INPUT_GAUSS_POINTS: u32 = 4;
+/// Delta angles (rad per sample) with the coning correction `coning`.
+pub const QUATPROP_INPUT_DELTA_ANGLES: u32 = 5;
+
+/// No coning correction (`quatprop_config_t::coning`, delta angles only).
+pub const QUATPROP_CONING_UNCORRECTED: u32 = 0;
+/// One sample plus the previous one.
+pub const QUATPROP_CONING_ONE_PLUS_PREVIOUS: u32 = 1;
+/// Two-sample correction.
+pub const QUATPROP_CONING_TWO_SAMPLE: u32 = 2;
+/// Three-sample correction.
+pub const QUATPROP_CONING_THREE_SAMPLE: u32 = 3;
+/// Four-sample correction.
+pub const QUATPROP_CONING_FOUR_SAMPLE: u32 = 4;
+/// Five-sample correction.
+pub const QUATPROP_CONING_FIVE_SAMPLE: u32 = 5;
+
+/// Increments added plainly (`quatprop_config_t::accumulator`).
+pub const QUATPROP_ACCUMULATOR_PLAIN: u32 = 0;
+/// Kahan-compensated sum: a float state that tracks a double one over millions of steps.
+pub const QUATPROP_ACCUMULATOR_KAHAN: u32 = 1;
+
+/// Axis remaps (`quatprop_set_axis_remap`): the signed sensor axis that becomes body x, y, z.
+/// `PY_NX_PZ`: body x = +sensor y, body y = -sensor x, body z = +sensor z (sensor turned 90 deg about z).
+pub const QUATPROP_REMAP_PX_PY_PZ: u32 = 0;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PX_NY_NZ: u32 = 1;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PX_PZ_NY: u32 = 2;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PX_NZ_PY: u32 = 3;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NX_PY_NZ: u32 = 4;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NX_NY_PZ: u32 = 5;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NX_PZ_PY: u32 = 6;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NX_NZ_NY: u32 = 7;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PY_PX_NZ: u32 = 8;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PY_NX_PZ: u32 = 9;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PY_PZ_PX: u32 = 10;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PY_NZ_NX: u32 = 11;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NY_PX_PZ: u32 = 12;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NY_NX_NZ: u32 = 13;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NY_PZ_NX: u32 = 14;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NY_NZ_PX: u32 = 15;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PZ_PX_PY: u32 = 16;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PZ_NX_NY: u32 = 17;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PZ_PY_NX: u32 = 18;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_PZ_NY_PX: u32 = 19;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NZ_PX_NY: u32 = 20;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NZ_NX_PY: u32 = 21;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NZ_PY_PX: u32 = 22;
+#[allow(missing_docs)]
+pub const QUATPROP_REMAP_NZ_NY_NX: u32 = 23;
+
+/// The propagator's configuration, chosen at run time. `quatprop_config_default` fills the recommended one.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct quatprop_config_t {
+    /// A `QUATPROP_SCHEME_*` value.
+    pub scheme: u32,
+    /// A `QUATPROP_STABILIZER_*` value.
+    pub stabilizer: u32,
+    /// n of `QUATPROP_STABILIZER_EVERY` (ignored otherwise; must be at least 1).
+    pub every: u32,
+    /// A `QUATPROP_INPUT_*` value.
+    pub input: u32,
+    /// A `QUATPROP_CONING_*` value (read only for `QUATPROP_INPUT_DELTA_ANGLES`).
+    pub coning: u32,
+    /// A `QUATPROP_ACCUMULATOR_*` value.
+    pub accumulator: u32,
+    /// Initial attitude, body to reference (normalized by init; finite and non-zero).
+    pub q0: quatprop_quat_t,
+}
+
+/// A quaternion, Hamilton convention, scalar first.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct quatprop_quat_t {
+    /// Scalar part.
+    pub w: f32,
+    /// i component.
+    pub x: f32,
+    /// j component.
+    pub y: f32,
+    /// k component.
+    pub z: f32,
+}
+
+/// One sample: a rate (rad/s) or a delta angle (rad), sensor axes, and whether the sensor clipped.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct quatprop_sample_t {
+    /// x component.
+    pub x: f32,
+    /// y component.
+    pub y: f32,
+    /// z component.
+    pub z: f32,
+    /// Non-zero if an axis sat at full scale (counted in `quatprop_counters_t::saturated`).
+    pub saturated: u32,
+}
+
+/// Aerospace Euler angles Z-Y'-X'' (rad): yaw in (-pi, pi], pitch in [-pi/2, pi/2], roll in (-pi, pi].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct quatprop_euler_zyx_t {
+    /// Heading about the reference z axis.
+    pub yaw: f32,
+    /// Elevation.
+    pub pitch: f32,
+    /// Bank about the body x axis.
+    pub roll: f32,
+}
+
+/// Classical Euler angles Z-X'-Z'' (rad): precession psi, nutation theta in [0, pi], spin phi.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct quatprop_euler_zxz_t {
+    /// Precession.
+    pub psi: f32,
+    /// Nutation.
+    pub theta: f32,
+    /// Spin.
+    pub phi: f32,
+}
+
+/// The counters of a state.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct quatprop_counters_t {
+    /// Steps taken (samples that closed a step and were accepted).
+    pub steps: u64,
+    /// Corrections applied by the stabilizer.
+    pub corrections: u64,
+    /// Saturated samples accepted.
+    pub saturated: u64,
+    /// Timestamp gaps the tick clock saw (0 without a clock).
+    pub clock_gaps: u32,
+    /// 1 if the bias estimator has learned a bias (or a fixed bias is set), else 0.
+    pub bias_learned: u32,
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Pointer checks: the only unsafe code. Each turns a C pointer into a Rust reference after checking it.
+
+/// A non-null, aligned pointer, or the status to return.
+fn check<T>(p: *const T) -> Result<(), quatprop_status_t> {
+    if p.is_null() {
+        Err(S::QUATPROP_NULL_POINTER)
+    } else if !p.is_aligned() {
+        Err(S::QUATPROP_MISALIGNED_POINTER)
+    } else {
+        Ok(())
+    }
+}
+
+/// Reads a `T` from C (a plain-data struct with no invalid bit patterns).
+///
+/// # Safety
+/// `p`, if non-null and aligned, must point to a readable `T`.
+unsafe fn read<T: Copy>(p: *const T) -> Result<T, quatprop_status_t> {
+    check(p)?;
+    // SAFETY: non-null and aligned (checked); readable per the caller's contract; T is plain data
+    // (f32/u32/i16 fields only), so every bit pattern is valid.
+    Ok(unsafe { p.read() })
+}
+
+/// Writes a `T` to C.
+///
+/// # Safety
+/// `p`, if non-null and aligned, must point to writable memory for a `T`.
+unsafe fn write<T>(p: *mut T, v: T) -> quatprop_status_t {
+    if let Err(s) = check(p) {
+        return s;
+    }
+    // SAFETY: non-null and aligned (checked), writable per the caller's contract.
+    unsafe { p.write(v) };
+    S::QUATPROP_OK
+}
+
+/// A C array of `n` `T`s as a slice.
+///
+/// # Safety
+/// `p`, if non-null and aligned, must point to `n` readable `T`s that nothing writes during the call.
+unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], quatprop_status_t> {
+    check(p)?;
+    // SAFETY: non-null and aligned (checked); `n` readable, unaliased-for-writes elements per the caller's
+    // contract; the element types here (i16 triples, u32, quatprop_sample_t) have no invalid bit patterns.
+    Ok(unsafe { core::slice::from_raw_parts(p, n) })
+}
+
+/// The state behind `s` if `quatprop_init` set it up.
+///
+/// # Safety
+/// `s`, if non-null and aligned, must point to a `quatprop_t`.
+unsafe fn initialized(s: *const quatprop_t) -> Result<*const State, quatprop_status_t> {
+    check(s)?;
+    let s = s.cast::<State>();
+    // SAFETY: non-null, aligned (checked; State's alignment is at most quatprop_t's, asserted above) and
+    // within the block (State fits, asserted above). `magic` is a u32 at offset 0 (repr(C)): any bits are
+    // a valid u32, and it is read before anything else.
+    let magic = unsafe { core::ptr::addr_of!((*s).magic).read() };
+    if magic == MAGIC {
+        Ok(s)
+    } else {
+        Err(S::QUATPROP_NOT_INITIALIZED)
+    }
+}
+
+/// The initialized state behind `s`, to change.
+///
+/// # Safety
+/// `s`, if non-null and aligned, must point to a writable `quatprop_t` that nothing else accesses during
+/// the call.
+unsafe fn state<'a>(s: *mut quatprop_t) -> Result<&'a mut Inner, quatprop_status_t> {
+    // SAFETY: forwarded contract.
+    let st = unsafe { initialized(s) }?.cast_mut();
+    // SAFETY: only `quatprop_init` writes MAGIC, together with a valid `Inner` (the caller must not write
+    // the block by other means than copying a whole initialized state). Exclusive per the caller's contract.
+    Ok(unsafe { &mut (*st).inner })
+}
+
+/// The initialized state behind `s`, to read.
+///
+/// # Safety
+/// `s`, if non-null and aligned, must point to a `quatprop_t` that nothing writes during the call.
+unsafe fn state_ref<'a>(s: *const quatprop_t) -> Result<&'a Inner, quatprop_status_t> {
+    // SAFETY: forwarded contract.
+    let st = unsafe { initialized(s) }?;
+    // SAFETY: as in `state`; shared, and nothing writes it during the call per the caller's contract.
+    Ok(unsafe { &(*st).inner })
+}
+
+/// Runs `f` on the state behind `s`.
+///
+/// # Safety
+/// As [`state`].
+unsafe fn with(
+    s: *mut quatprop_t,
+    f: impl FnOnce(&mut Inner) -> Result<(), Fail>,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    match unsafe { state(s) } {
+        Ok(inner) => done(f(inner)),
+        Err(e) => e,
+    }
+}
+
+/// Runs `f` on the state behind `s` (read only) and writes its result to `out`.
+///
+/// # Safety
+/// As [`state_ref`] and [`write`].
+unsafe fn get<T>(
+    s: *const quatprop_t,
+    out: *mut T,
+    f: impl FnOnce(&Inner) -> T,
+) -> quatprop_status_t {
+    if let Err(e) = check(out) {
+        return e;
+    }
+    // SAFETY: forwarded contract.
+    match unsafe { state_ref(s) } {
+        // SAFETY: forwarded contract.
+        Ok(inner) => unsafe { write(out, f(inner)) },
+        Err(e) => e,
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The API.
+
+/// Fills `out` with the recommended configuration: EXPMAP, FIRST_ORDER, HISTORY, PLAIN, identity attitude.
+///
+/// # Safety
+/// `out` must be NULL or point to writable memory for a `quatprop_config_t`.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_config_default(out: *mut quatprop_config_t) -> quatprop_status_t {
+    let c = quatprop_config_t {
+        scheme: QUATPROP_SCHEME_EXPMAP,
+        stabilizer: QUATPROP_STABILIZER_FIRST_ORDER,
+        every: 1,
+        input: QUATPROP_INPUT_HISTORY,
+        coning: QUATPROP_CONING_TWO_SAMPLE,
+        accumulator: QUATPROP_ACCUMULATOR_PLAIN,
+        q0: quatprop_quat_t {
+            w: 1.0,
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+    };
+    // SAFETY: forwarded contract.
+    unsafe { write(out, c) }
+}
+
+/// Sets up `s` with configuration `config` and an empty front end (no count scale, identity alignment,
+/// no bias, no time base). Any previous content of `s` is ignored; on error `s` is not written.
+///
+/// # Safety
+/// `s` must be NULL or point to a writable `quatprop_t` not in use elsewhere; `config` NULL or readable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_init(
+    s: *mut quatprop_t,
+    config: *const quatprop_config_t,
+) -> quatprop_status_t {
+    if let Err(e) = check(s) {
+        return e;
+    }
+    // SAFETY: forwarded contract.
+    let c = match unsafe { read(config) } {
+        Ok(c) => c,
+        Err(e) => return e,
+    };
+    let choice = Choice {
+        q0: Quat::new(c.q0.w, c.q0.x, c.q0.y, c.q0.z),
+        scheme: c.scheme,
+        stabilizer: c.stabilizer,
+        every: c.every,
+        input: c.input,
+        coning: c.coning,
+        accumulator: c.accumulator,
+    };
+    match Inner::new(&choice) {
+        Ok(inner) => {
+            // SAFETY: non-null and aligned (checked), writable per the contract; State fits the block.
+            unsafe {
+                s.cast::<State>().write(State {
+                    magic: MAGIC,
+                    inner,
+                })
+            };
+            S::QUATPROP_OK
+        }
+        Err(f) => status(f),
+    }
+}
+
+/// Sets the count scale from the gyro's full scale in deg/s (e.g. 2000 for +-2000 dps, 16-bit counts).
+/// `QUATPROP_BAD_ARGUMENT` unless finite and positive.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_count_scale_dps(
+    s: *mut quatprop_t,
+    full_scale_dps: f64,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            if !(full_scale_dps > 0.0 && full_scale_dps <= f64::MAX) {
+                return Err(Fail::BadArgument);
+            }
+            st.front.scale = Some(CountScale::full_scale_dps(full_scale_dps));
+            Ok(())
+        })
+    }
+}
+
+/// Sets the count scale from the sensitivity in counts per deg/s (e.g. 16.4 for +-2000 dps).
+/// `QUATPROP_BAD_ARGUMENT` unless finite and positive.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_count_sensitivity(
+    s: *mut quatprop_t,
+    counts_per_dps: f64,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            if !(counts_per_dps > 0.0 && counts_per_dps <= f64::MAX) {
+                return Err(Fail::BadArgument);
+            }
+            st.front.scale = Some(CountScale::sensitivity(counts_per_dps));
+            Ok(())
+        })
+    }
+}
+
+/// Sets the alignment to a square mounting, a `QUATPROP_REMAP_*` value.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_axis_remap(
+    s: *mut quatprop_t,
+    remap: u32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.alignment = Some(Alignment::Remap(remap_of(remap)?));
+            Ok(())
+        })
+    }
+}
+
+/// Sets the alignment to a rotation matrix `R` (row-major, `v_body = R v_sensor`);
+/// `QUATPROP_NOT_A_ROTATION` unless orthonormal with det 1 to 1e-4.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `r` NULL or 9 readable floats.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_alignment_matrix(
+    s: *mut quatprop_t,
+    r: *const f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let r = match unsafe { read(r.cast::<[[f32; 3]; 3]>()) } {
+        Ok(r) => r,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.alignment = Some(Alignment::from_matrix(r)?);
+            Ok(())
+        })
+    }
+}
+
+/// Subtracts a fixed bias `b[3]` (rad/s, body axes) from every rate sample; replaces any estimator.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `b` NULL or 3 readable floats.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_fixed_bias(
+    s: *mut quatprop_t,
+    b: *const f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let b = match unsafe { read(b.cast::<[f32; 3]>()) } {
+        Ok(b) => b,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.bias = Bias::Fixed(FixedBias::new(vec3(b))?);
+            Ok(())
+        })
+    }
+}
+
+/// Learns the bias while the body is still: windows of `window` samples in which every axis stays within
+/// `gate` rad/s of the bias, averaged over the last `memory` windows (64 is the Rust default).
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_bias_estimator(
+    s: *mut quatprop_t,
+    window: u32,
+    gate: f32,
+    memory: u32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.bias = Bias::Estimator(BiasEstimator::with_memory(window, gate, memory)?);
+            Ok(())
+        })
+    }
+}
+
+/// Removes the bias stage.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_clear_bias(s: *mut quatprop_t) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.bias = Bias::None;
+            Ok(())
+        })
+    }
+}
+
+/// The bias subtracted now (rad/s, body axes; zero without a bias stage) into `out[3]`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `out` NULL or 3 writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_get_bias(
+    s: *const quatprop_t,
+    out: *mut f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        get(s, out.cast::<[f32; 3]>(), |st| {
+            let b = match &st.front.bias {
+                Bias::None => quatprop::Vec3::ZERO,
+                Bias::Fixed(f) => f.apply(GyroSample::default()).rate * -1.0,
+                Bias::Estimator(e) => e.bias(),
+            };
+            [b.x, b.y, b.z]
+        })
+    }
+}
+
+/// Sets the fixed sample period (s) that times the bursts (`quatprop_push_*_burst`); time stays exact over
+/// any number of samples (the period's float rounding is carried).
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_fixed_period(
+    s: *mut quatprop_t,
+    period: f64,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.period = Some(FixedPeriod::new(period)?);
+            Ok(())
+        })
+    }
+}
+
+/// Sets the tick clock of the timed bursts: a counter at `frequency` Hz, `bits` wide (1 to 32; it wraps).
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_tick_clock(
+    s: *mut quatprop_t,
+    frequency: f64,
+    bits: u32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.clock = Some(TickClock::new(frequency, bits)?);
+            Ok(())
+        })
+    }
+}
+
+/// Pushes one rate sample (rad/s, sensor axes: alignment and bias apply) taken `dt` s after the previous
+/// one. On error nothing changes.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `sample` NULL or readable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_rate(
+    s: *mut quatprop_t,
+    sample: *const quatprop_sample_t,
+    dt: f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let v = match unsafe { read(sample) } {
+        Ok(v) => v,
+        Err(e) => return e,
+    };
+    let g = GyroSample {
+        rate: vec3([v.x, v.y, v.z]),
+        saturated: v.saturated != 0,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { with(s, |st| st.push_rate(g, dt)) }
+}
+
+/// Pushes one sample of raw counts `counts[3]` (sensor axes: count scale, alignment and bias apply) taken
+/// `dt` s after the previous one. A count at -32768 or 32767 marks the sample saturated. On error nothing
+/// changes.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or 3 readable int16s.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_counts(
+    s: *mut quatprop_t,
+    counts: *const i16,
+    dt: f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let c = match unsafe { read(counts.cast::<[i16; 3]>()) } {
+        Ok(c) => c,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            let scale = st.front.scale.ok_or(Fail::NotConfigured)?;
+            st.push_rate(counts_sample(&scale, c), dt)
+        })
+    }
+}
+
+/// Pushes one delta angle (rad over one sample, sensor axes: the alignment applies, the bias does not)
+/// taken `dt` s after the previous one; needs `QUATPROP_INPUT_DELTA_ANGLES`. On error nothing changes.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `sample` NULL or readable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_delta(
+    s: *mut quatprop_t,
+    sample: *const quatprop_sample_t,
+    dt: f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let v = match unsafe { read(sample) } {
+        Ok(v) => v,
+        Err(e) => return e,
+    };
+    let d = DeltaAngle {
+        angle: vec3([v.x, v.y, v.z]),
+        saturated: v.saturated != 0,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { with(s, |st| st.push_delta(d, dt)) }
+}
+
+/// Runs a burst and reports through `integrated`.
+///
+/// # Safety
+/// As [`state`] and [`write`].
+unsafe fn burst(
+    s: *mut quatprop_t,
+    integrated: *mut usize,
+    f: impl FnOnce(&mut Inner) -> Result<usize, state::Refusal>,
+) -> quatprop_status_t {
+    if let Err(e) = check(integrated) {
+        return e;
+    }
+    // SAFETY: forwarded contract.
+    let st = match unsafe { state(s) } {
+        Ok(st) => st,
+        Err(e) => return e,
+    };
+    let (n, status) = match f(st) {
+        Ok(n) => (n, S::QUATPROP_OK),
+        Err((i, fail)) => (i, status(fail)),
+    };
+    // SAFETY: forwarded contract.
+    unsafe { write(integrated, n) };
+    status
+}
+
+/// Pushes a FIFO burst of `n` raw-count samples `counts[3 * n]` (x, y, z per sample, sensor axes) taken at
+/// the fixed period: count scale, alignment and bias apply. Bit for bit the same as the Rust quick start.
+///
+/// `*integrated` gets the number of samples integrated. On success it is `n`. On an error it is the index of
+/// the refused sample: the state is then what it was after the last accepted sample, except that the
+/// refused sample's interval is kept by the period (push `counts + 3 * (*integrated + 1)` next and it is
+/// covered), as in Rust's `push_burst`. The errors before any sample (NULL, NOT_INITIALIZED,
+/// NOT_CONFIGURED, WRONG_INPUT_KIND) leave everything unchanged and `*integrated` 0.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or `3 * n` readable
+/// int16s; `integrated` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_counts_burst(
+    s: *mut quatprop_t,
+    counts: *const i16,
+    n: usize,
+    integrated: *mut usize,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let fifo = match unsafe { slice(counts.cast::<[i16; 3]>(), n) } {
+        Ok(f) => f,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        burst(s, integrated, |st| {
+            let Some(scale) = st.front.scale else {
+                return Err((0, Fail::NotConfigured));
+            };
+            st.rate_burst(fifo.len(), |i| {
+                counts_sample(&scale, fifo.get(i).copied().unwrap_or_default())
+            })
+        })
+    }
+}
+
+/// As `quatprop_push_counts_burst`, with each sample's timestamp `timestamps[n]` (ticks of the tick clock):
+/// each `dt` is the exact time since the last accepted sample; the very first timestamp starts the clock.
+/// On a refused sample (`QUATPROP_TIMESTAMP_NOT_INCREASING` among others) the clock stays at the last
+/// accepted sample.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or `3 * n` readable
+/// int16s; `timestamps` NULL or `n` readable uint32s; `integrated` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_counts_burst_timed(
+    s: *mut quatprop_t,
+    counts: *const i16,
+    timestamps: *const u32,
+    n: usize,
+    integrated: *mut usize,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let fifo = match unsafe { slice(counts.cast::<[i16; 3]>(), n) } {
+        Ok(f) => f,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    let times = match unsafe { slice(timestamps, n) } {
+        Ok(t) => t,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        burst(s, integrated, |st| {
+            let Some(scale) = st.front.scale else {
+                return Err((0, Fail::NotConfigured));
+            };
+            st.rate_burst_timed(n, |i| {
+                let c = fifo.get(i).copied().unwrap_or_default();
+                (counts_sample(&scale, c), times.get(i).copied().unwrap_or(0))
+            })
+        })
+    }
+}
+
+/// Pushes a burst of `n` rate samples (rad/s, sensor axes: alignment and bias apply) taken at the fixed
+/// period. `*integrated` as for `quatprop_push_counts_burst`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `samples` NULL or `n` readable
+/// samples; `integrated` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_rate_burst(
+    s: *mut quatprop_t,
+    samples: *const quatprop_sample_t,
+    n: usize,
+    integrated: *mut usize,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let fifo = match unsafe { slice(samples, n) } {
+        Ok(f) => f,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        burst(s, integrated, |st| {
+            st.rate_burst(fifo.len(), |i| {
+                let v = fifo.get(i).copied().unwrap_or(quatprop_sample_t {
+                    x: 0.0,
+                    y: 0.0,
+                    z: 0.0,
+                    saturated: 0,
+                });
+                GyroSample {
+                    rate: vec3([v.x, v.y, v.z]),
+                    saturated: v.saturated != 0,
+                }
+            })
+        })
+    }
+}
+
+/// Pushes a burst of `n` delta angles (rad, sensor axes: the alignment applies) taken at the fixed period;
+/// needs `QUATPROP_INPUT_DELTA_ANGLES`. `*integrated` as for `quatprop_push_counts_burst`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `samples` NULL or `n` readable
+/// samples; `integrated` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_push_delta_burst(
+    s: *mut quatprop_t,
+    samples: *const quatprop_sample_t,
+    n: usize,
+    integrated: *mut usize,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let fifo = match unsafe { slice(samples, n) } {
+        Ok(f) => f,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        burst(s, integrated, |st| {
+            // At most 32 converted at a time on the stack.
+            let mut done = 0;
+            for chunk in fifo.chunks(32) {
+                let mut buf = [DeltaAngle::<f32>::default(); 32];
+                for (d, v) in buf.iter_mut().zip(chunk) {
+                    *d = DeltaAngle {
+                        angle: vec3([v.x, v.y, v.z]),
+                        saturated: v.saturated != 0,
+                    };
+                }
+                let part = buf.get(..chunk.len()).unwrap_or(&[]);
+                match st.delta_burst(part) {
+                    Ok(k) => done += k,
+                    Err((i, f)) => return Err((done + i, f)),
+                }
+            }
+            Ok(done)
+        })
+    }
+}
+
+/// Forgets the samples the input model keeps between steps (after a gap: the next sample starts it
+/// afresh). The attitude and counters stay.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_restart_input(s: *mut quatprop_t) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.restart_input();
+            Ok(())
+        })
+    }
+}
+
+/// Replaces the attitude (normalized), keeping counters and input samples.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `q` NULL or readable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_attitude(
+    s: *mut quatprop_t,
+    q: *const quatprop_quat_t,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let q = match unsafe { read(q) } {
+        Ok(q) => q,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { with(s, |st| st.set_attitude(Quat::new(q.w, q.x, q.y, q.z))) }
+}
+
+/// The attitude (body to reference, Hamilton, scalar first) into `out`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_get_attitude(
+    s: *const quatprop_t,
+    out: *mut quatprop_quat_t,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        get(s, out, |st| {
+            let q = st.attitude();
+            quatprop_quat_t {
+                w: q.w,
+                x: q.x,
+                y: q.y,
+                z: q.z,
+            }
+        })
+    }
+}
+
+/// The attitude as aerospace Euler angles (yaw, pitch, roll; Z-Y'-X'') into `out`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_get_euler_zyx(
+    s: *const quatprop_t,
+    out: *mut quatprop_euler_zyx_t,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        get(s, out, |st| {
+            let e = st.attitude().to_euler_zyx();
+            quatprop_euler_zyx_t {
+                yaw: e.yaw,
+                pitch: e.pitch,
+                roll: e.roll,
+            }
+        })
+    }
+}
+
+/// The attitude as classical Euler angles (psi, theta, phi; Z-X'-Z'') into `out`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_get_euler_zxz(
+    s: *const quatprop_t,
+    out: *mut quatprop_euler_zxz_t,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        get(s, out, |st| {
+            let e = st.attitude().to_euler_zxz();
+            quatprop_euler_zxz_t {
+                psi: e.psi,
+                theta: e.theta,
+                phi: e.phi,
+            }
+        })
+    }
+}
+
+/// The normalization error `|q|^2 - 1` of the attitude into `out`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_get_norm_error(
+    s: *const quatprop_t,
+    out: *mut f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe { get(s, out, |st| st.norm_error()) }
+}
+
+/// The counters into `out`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_get_counters(
+    s: *const quatprop_t,
+    out: *mut quatprop_counters_t,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        get(s, out, |st| {
+            let (steps, corrections, saturated) = st.counters();
+            quatprop_counters_t {
+                steps,
+                corrections,
+                saturated,
+                clock_gaps: st.front.clock.map_or(0, |c| c.gaps()),
+                bias_learned: match &st.front.bias {
+                    Bias::None => 0,
+                    Bias::Fixed(_) => 1,
+                    Bias::Estimator(e) => u32::from(e.is_learned()),
+                },
+            }
+        })
+    }
+}
+
+/// A static, NUL-terminated name for a status value (e.g. "QUATPROP_NON_FINITE_RATE"); "unknown status"
+/// for a value that names none. Never NULL.
+#[no_mangle]
+pub extern "C" fn quatprop_status_name(status: i32) -> *const core::ffi::c_char {
+    let name: &'static core::ffi::CStr = match status {
+        0 => c"QUATPROP_OK",
+        1 => c"QUATPROP_NON_FINITE_RATE",
+        2 => c"QUATPROP_NON_FINITE_STEP",
+        3 => c"QUATPROP_NON_POSITIVE_STEP",
+        4 => c"QUATPROP_STEP_ANGLE_BEYOND_STABILITY",
+        5 => c"QUATPROP_GAIN_BEYOND_STABILITY",
+        6 => c"QUATPROP_ZERO_QUATERNION",
+        7 => c"QUATPROP_NON_FINITE_QUATERNION",
+        8 => c"QUATPROP_INVALID_STABILIZER",
+        9 => c"QUATPROP_INVALID_GAIN",
+        10 => c"QUATPROP_NOT_A_ROTATION",
+        11 => c"QUATPROP_TIMESTAMP_NOT_INCREASING",
+        12 => c"QUATPROP_INVALID_CLOCK",
+        13 => c"QUATPROP_INVALID_ESTIMATOR",
+        14 => c"QUATPROP_NON_FINITE_RESULT",
+        15 => c"QUATPROP_UNKNOWN_ERROR",
+        100 => c"QUATPROP_NULL_POINTER",
+        101 => c"QUATPROP_MISALIGNED_POINTER",
+        102 => c"QUATPROP_BAD_ENUM",
+        103 => c"QUATPROP_NOT_INITIALIZED",
+        104 => c"QUATPROP_WRONG_INPUT_KIND",
+        105 => c"QUATPROP_NOT_CONFIGURED",
+        106 => c"QUATPROP_BAD_ARGUMENT",
+        _ => c"unknown status",
+    };
+    name.as_ptr()
+}
+
+/// Test hook of the link-time proof (feature `panic-selftest` only): a reachable panic.
+#[cfg(feature = "panic-selftest")]
+#[no_mangle]
+pub extern "C" fn quatprop_panic_selftest(i: usize) -> u32 {
+    let a = [1u32, 2, 3];
+    a[core::hint::black_box(i)]
+}
+
+/// Any panic path that survives the optimizer and `--gc-sections` references this undefined symbol, so
+/// the firmware link fails: no panic can cross the C boundary (the core's `panic-never` proof, for C).
+#[cfg(not(test))]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
+    extern "C" {
+        fn quatprop_ffi_panic_is_reachable() -> !;
+    }
+    // SAFETY: never executed in a linked program: the symbol is defined nowhere, so a program in which
+    // this call is reachable does not link.
+    unsafe { quatprop_ffi_panic_is_reachable() }
+}
