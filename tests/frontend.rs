@@ -291,3 +291,99 @@ fn bias_estimator_learns_still_bias_and_nothing_else() {
         Err(Error::InvalidEstimator)
     );
 }
+
+#[test]
+fn tick_clock_spreads_a_long_gaps_remainder_and_keeps_every_dt_positive() {
+    // f32 at 1 MHz: a gap of 2^31 − 1 ticks (35.8 min, the longest a 32-bit counter allows) leaves a
+    // carried remainder of up to half an ulp of its dt (ulp(2147 s) = 2.4e-4 s in f32: 122 ticks); then
+    // short samples of 3 ticks. Each dt is within an eighth of its own interval, the sum of the dts never
+    // strays from the exact time by more than the gap's own error, and once the carry is paid the sum is
+    // exact to the documented rounding: 4ε²·dt per sample (1.2e-10 s for the gap's dt, ε = 2^-23).
+    // The gap and the short dts are summed apart, so that the f64 sums' own rounding stays below 1e-15 s.
+    let mut clock = TickClock::<f32>::new(1.0e6, 32).unwrap();
+    assert_eq!(clock.dt(7), Ok(None));
+    let gap_ticks: u32 = (1 << 31) - 1;
+    let mut t: u32 = 7 + gap_ticks;
+    let gap = f64::from(clock.dt(t).unwrap().unwrap());
+    let gap_error = gap - f64::from(gap_ticks) * 1e-6;
+    // The gap's own dt: exact to half an ulp of f32 at 2147 s (1.2e-4 s). Near 2^31 ticks f32 rounds the
+    // count up to 2^31; its rounding error (−1 tick) is added back exactly.
+    assert!(gap_error.abs() <= 0.5 * 2.441_406_25e-4, "{gap_error:e}");
+    let rounding = 4.0 * f64::from(f32::EPSILON).powi(2) * gap;
+    let mut short = 0.0_f64;
+    for k in 1..=1000_u32 {
+        t += 3;
+        let dt = f64::from(clock.dt(t).unwrap().unwrap());
+        assert!(
+            // ⅛ of the interval, plus half an ulp of the carry it is split from (≤ 1.2e-4 s: 3.6e-12 s).
+            (dt - 3e-6).abs() <= 3e-6 / 8.0 + 1e-11,
+            "sample {k}: dt = {dt:e} for 3 ticks"
+        );
+        short += dt;
+        let err = gap_error + (short - f64::from(3 * k) * 1e-6);
+        assert!(
+            err.abs() <= gap_error.abs() + 2.0 * rounding,
+            "sample {k}: {err:e}, the gap's dt was off by {gap_error:e}"
+        );
+    }
+    // 3/8 µs paid per sample: a carry up to 122 µs is paid after 326 samples.
+    let err = gap_error + (short - 3000.0 * 1e-6);
+    assert!(
+        err.abs() <= rounding + 1e-15 * 1000.0,
+        "after the carry was paid: {err:e} > {rounding:e}"
+    );
+    // The long interval was the first one (nothing to compare it with) and the short ones are shorter:
+    // no gap counted.
+    assert_eq!(clock.gaps(), 0);
+}
+
+#[test]
+fn tick_clock_in_steady_operation_gives_the_rounded_period_plus_its_own_remainder() {
+    // The spreading never acts in steady operation (the remainder is half an ulp of a dt like the next):
+    // 1 kHz samples of a 1 MHz clock give dts that differ from f32(1e-3) by at most one ulp of it.
+    let mut clock = TickClock::<f32>::new(1.0e6, 32).unwrap();
+    assert_eq!(clock.dt(0), Ok(None));
+    let ulp = 2f64.powi(-33); // the spacing of f32 at 1e-3 (in [2^-10, 2^-9)): 1.16e-10 s
+    for k in 1..=10_000u32 {
+        let dt = clock.dt(k * 1000).unwrap().unwrap();
+        assert!(
+            (f64::from(dt) - f64::from(1e-3_f32)).abs() <= ulp,
+            "{k}: {dt:e}"
+        );
+    }
+}
+
+#[test]
+fn front_end_constructors_refuse_bad_values_with_typed_errors() {
+    use quatprop::frontend::FixedBias;
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        assert_eq!(
+            FixedBias::new(Vec3::new(0.0, bad, 0.0)),
+            Err(Error::NonFiniteRate)
+        );
+        let est = BiasEstimator::<f32>::new(10, 0.05).unwrap();
+        assert_eq!(
+            est.with_initial(Vec3::new(bad, 0.0, 0.0)),
+            Err(Error::NonFiniteRate)
+        );
+        assert_eq!(
+            BiasEstimator::<f32>::new(10, bad),
+            Err(Error::InvalidEstimator)
+        );
+    }
+    assert_eq!(
+        BiasEstimator::<f32>::with_memory(10, 0.05, 0),
+        Err(Error::InvalidEstimator)
+    );
+    assert_eq!(
+        BiasEstimator::<f32>::new(10, 0.0),
+        Err(Error::InvalidEstimator)
+    );
+    // A tick too long to split exactly (beyond f32::MAX / 2^27 s) and one that underflows f32.
+    assert_eq!(TickClock::<f32>::new(1e-35, 32), Err(Error::NonFiniteStep));
+    assert_eq!(TickClock::<f32>::new(1e60, 32), Err(Error::NonPositiveStep));
+    assert_eq!(
+        TickClock::<f32>::new(f64::INFINITY, 32),
+        Err(Error::NonFiniteStep)
+    );
+}

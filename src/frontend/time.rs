@@ -103,7 +103,17 @@ impl<T: Real> FixedPeriod<T> {
 /// The sensor's own clock: per-sample timestamps in integer ticks of a clock of known frequency, wrapping
 /// at 2³² (a 32-bit counter; a narrower counter's timestamps are its value, wrapping at its own width:
 /// give that width). `dt` is the tick count since the previous timestamp times the tick period, exact in
-/// the same carried sense as [`FixedPeriod`].
+/// the same carried sense as [`FixedPeriod`]: the `dt`s handed out since the last [`TickClock::restart`]
+/// sum to the elapsed ticks times the period within half an ulp of the longest of them (plus about 2⁻⁴⁸ of
+/// each `dt` in f32 for the rounding of the carry and of the period's low part).
+///
+/// The carried remainder goes into the next `dt` only up to an eighth of that `dt`'s interval; the rest
+/// stays carried and is paid over the following samples. After a long interval the remainder (up to half an
+/// ulp of its `dt`: 2.4 µs after a 40 s gap in f32) can be longer than a short next interval (1 µs, one tick
+/// at 1 MHz); given whole, it would make that `dt` negative. So every `dt` is positive and within an eighth
+/// of its own interval (`n` ticks give `dt` in `[⅞, 9⁄8]·n·period` to rounding), and a carry only shrinks
+/// while it is spread. In steady operation the remainder is far below that limit (half an ulp of a `dt`
+/// like the next one) and goes whole into the next `dt`.
 ///
 /// A timestamp that does not advance (a duplicate) or goes backwards (a wrapped difference beyond half the
 /// counter's range) is refused with a typed error and leaves the clock unchanged. A jump of more than
@@ -214,13 +224,30 @@ impl<T: Real> TickClock<T> {
             return Err(Error::TimestampNotIncreasing);
         }
         // n·(hi + lo) + carry, with n·hi split exactly. n rounds in f32 beyond 2²⁴ ticks: its rounding
-        // error (an integer below 2⁸, exact in T) is added back.
+        // error (an integer below 2⁸, exact in T) is added back. It is taken in f64, where both are exact:
+        // near 2³¹ ticks f32 rounds n up to 2³¹, which `as i32` would saturate to 2³¹ − 1.
         let count = ticks.min(i32::MAX as u32) as i32;
         let n = T::from_i32(count);
-        let n_err = T::from_i32(count.wrapping_sub(n.to_i32()));
+        let n_err = T::from_f64(f64::from(count) - n.to_f64());
         let (p, p_err) = two_product(n, self.hi);
-        let (dt, s_err) = two_sum(p, p_err + n_err * self.hi + n * self.lo + self.carry);
-        next.carry = s_err;
+        // The carry goes into this dt up to an eighth of the interval; the rest stays carried. After a long
+        // interval the carry (up to half an ulp of its dt) can exceed a short interval's whole length.
+        let limit = p * T::from_f64(0.125);
+        let (given, rest) = if self.carry.abs() <= limit {
+            (self.carry, None)
+        } else {
+            let target = if self.carry > T::ZERO { limit } else { -limit };
+            // given + rest = carry exactly: if |target| ≤ |carry|/2 then rest ≥ carry/2 (same sign) and
+            // carry − rest is exact (Sterbenz); otherwise carry − target is exact and given = target.
+            let rest = self.carry - target;
+            (self.carry - rest, Some(rest))
+        };
+        let (dt, s_err) = two_sum(p, p_err + n_err * self.hi + n * self.lo + given);
+        // |s_err + rest| < |carry| − interval/8 + ½ ulp(dt): a spread carry only shrinks.
+        next.carry = match rest {
+            Some(rest) => s_err + rest,
+            None => s_err,
+        };
         if self.previous_ticks != 0 && u64::from(ticks) * 2 > u64::from(self.previous_ticks) * 3 {
             next.gaps = self.gaps.saturating_add(1);
         }

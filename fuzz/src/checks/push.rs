@@ -161,13 +161,10 @@ fn with_model<T: Fz, S: Scheme<T> + Debug + PartialEq, I: Model<T>>(
 }
 
 /// Asserts that a refused call left the propagator bit for bit as it was.
+#[track_caller]
 pub fn assert_unchanged<P: PartialEq + Debug>(before: &P, after: &P, what: &dyn Debug) {
     assert!(after == before, "state changed on {what:?}");
-    assert_eq!(
-        format!("{after:?}"),
-        format!("{before:?}"),
-        "state changed on {what:?}"
-    );
+    super::assert_same_text(after, before, &format_args!("state changed on {what:?}"));
 }
 
 /// The class of error a push must get from its sample and `dt` alone, if they decide it.
@@ -221,7 +218,7 @@ fn drive<
     let mut last_dt = T::from_f64(1e-3);
     let first_order_gate = (4.0 * eps / 3.0).sqrt() - 7.0 * eps;
     // FUZZ_TRACE=1 prints every call (to read a crash input).
-    let trace = std::env::var_os("FUZZ_TRACE").is_some();
+    let trace = super::trace();
     if trace {
         eprintln!("{} {p:?}", T::NAME);
     }
