@@ -3,7 +3,13 @@
 //! scheme (the eight zero-sized ones, the run-time `SchemeKind`, Baumgarte on each Runge–Kutta scheme) ×
 //! stabilizer (four zero-sized, the run-time `StabilizerKind`) × accumulator (`Plain`, `Kahan`): see
 //! `quatprop_firmware::configs`. The panic handler is the `panic-never` crate's, which references a symbol
-//! that does not exist, so if any panic path is still reachable after optimization the link fails.
+//! that does not exist, so if any panic path is still reachable after optimization the link fails. The
+//! sensor front end (`CountScale`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator`, `FixedPeriod`,
+//! `TickClock`) is called once, with opaque inputs, in every image; `start` and the FIFO bursts
+//! (`push_burst` at a fixed period, `push_burst_timed` with sensor ticks) for every input model ×
+//! accumulator through the run-time `SchemeKind` × `StabilizerKind` (whose dispatch reaches every scheme's
+//! and stabilizer's code; one image with the bursts on every zero-sized combination too would not fit the
+//! boards' 4 MB flash).
 //!
 //! Built, not run:
 //! `cargo build --release --target <triple> --no-default-features --features panic-never --bin nopanic`.
@@ -16,11 +22,14 @@
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use quatprop::accumulate::Accumulator;
+use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::frontend::{
+    Alignment, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
+};
 use quatprop::input::coning::{ConingKind, TwoSample};
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
-use quatprop::scheme::Scheme;
-use quatprop::stabilize::Stabilizer;
+use quatprop::scheme::{Scheme, SchemeKind};
+use quatprop::stabilize::{Stabilizer, StabilizerKind};
 use quatprop::{Propagator, Quat, Vec3};
 use quatprop_firmware::configs::{each_scheme, Input, Label, Visitor};
 
@@ -79,30 +88,107 @@ const ALL: bool = !cfg!(any(
     feature = "nopanic-delta-angles"
 ));
 
+/// A stream's first sample, then FIFO bursts at the exact period and with sensor timestamps, on the run-time
+/// scheme and stabilizer choice.
+#[inline(never)]
+fn bursts<I: Input, A: Accumulator<f32>>(input: I, accumulator: A) {
+    let q0 = black_box(Quat::new(1.0_f32, 0.0, 0.0, 0.0));
+    let scheme = black_box(SchemeKind::ExpMap);
+    let Ok(p) = Propagator::new(q0, scheme, input, black_box(StabilizerKind::FirstOrder)) else {
+        return;
+    };
+    let mut p = p.with_accumulator(accumulator);
+    let s = black_box(input.sample(black_box(Vec3::new(0.1, -0.2, 0.3)), 1.0e-3));
+    let _ = black_box(p.start(s));
+    let burst = black_box([s; 4]);
+    if let Ok(mut period) = FixedPeriod::new(black_box(1.0e-3)) {
+        let n = black_box(4);
+        let _ = black_box(p.push_burst(burst.get(..n).unwrap_or(&[]), &mut period));
+    }
+    let timed = black_box([(s, 1_000_u32), (s, 2_000), (s, 3_000), (s, 4_000)]);
+    if let Ok(mut clock) = TickClock::new(black_box(1.0e6), black_box(32)) {
+        let _ = black_box(p.push_burst_timed(&timed, &mut clock));
+    }
+    black_box((p.attitude(), p.steps(), p.saturated_samples()));
+}
+
+/// `bursts` on both accumulators (as the image's accumulator features select).
+fn bursts_each<I: Input>(input: I) {
+    if Exercise::PLAIN {
+        bursts(input, Plain);
+    }
+    if Exercise::KAHAN {
+        bursts(input, Kahan::new());
+    }
+}
+
+/// Every front-end call once, with opaque inputs.
+#[inline(never)]
+fn front_end() {
+    let scale = CountScale::<f32>::full_scale_dps(black_box(2000.0));
+    let s = scale.sample(black_box([1, -2, i16::MAX]));
+    let s = black_box(AxisRemap::PyNxPz).apply(s);
+    let identity = [[1.0_f32, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let s = match Alignment::from_matrix(black_box(identity)) {
+        Ok(a) => a.apply(s),
+        Err(_) => s,
+    };
+    if let Ok(b) = FixedBias::new(black_box(Vec3::new(0.01_f32, 0.0, 0.0))) {
+        black_box(b.apply(s));
+    }
+    if let Ok(e) = BiasEstimator::<f32>::new(black_box(1000), black_box(0.05)) {
+        if let Ok(mut e) = e.with_initial(black_box(Vec3::new(0.0, 0.0, 0.01))) {
+            for _ in 0..black_box(3) {
+                let _ = black_box(e.update(black_box(s)));
+            }
+            black_box((e.bias(), e.is_learned()));
+        }
+    }
+    if let Ok(mut period) = FixedPeriod::<f32>::new(black_box(1.0e-3)) {
+        black_box(period.next_dt());
+        period.carry_over(black_box(1.0e-3));
+        black_box(period.period());
+    }
+    if let Ok(mut clock) = TickClock::<f32>::new(black_box(1.0e6), black_box(16)) {
+        let _ = black_box(clock.dt(black_box(5)));
+        let _ = black_box(clock.advance(black_box(70_000)));
+        black_box(clock.gaps());
+        clock.restart();
+    }
+}
+
 #[entry]
 fn main() -> ! {
+    front_end();
     let v = &mut Exercise;
     if ALL || cfg!(feature = "nopanic-hold") {
         each_scheme(v, Hold);
+        bursts_each(Hold);
     }
     if ALL || cfg!(feature = "nopanic-linear") {
         each_scheme(v, Linear::new());
+        bursts_each(Linear::new());
     }
     if ALL || cfg!(feature = "nopanic-history") {
         each_scheme(v, History::new());
+        bursts_each(History::new());
     }
     if ALL || cfg!(feature = "nopanic-twice-rate") {
         each_scheme(v, TwiceRate::new());
+        bursts_each(TwiceRate::new());
     }
     if ALL || cfg!(feature = "nopanic-gauss-points") {
         each_scheme(v, GaussPoints::new());
+        bursts_each(GaussPoints::new());
     }
     if ALL || cfg!(feature = "nopanic-delta-two-sample") {
         each_scheme(v, DeltaAngles::new(TwoSample));
+        bursts_each(DeltaAngles::new(TwoSample));
     }
     if ALL || cfg!(feature = "nopanic-delta-angles") {
         // Every coning correction's code, behind the run-time choice.
         each_scheme(v, DeltaAngles::new(black_box(ConingKind::FiveSample)));
+        bursts_each(DeltaAngles::new(black_box(ConingKind::FiveSample)));
     }
     if cfg!(feature = "nopanic-selftest") {
         // A reachable panic: this image must NOT link (shows the proof can fail).
