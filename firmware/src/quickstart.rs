@@ -7,7 +7,7 @@ use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
 use quatprop::{Error, GyroSample, Propagator, Quat};
 
 /// Samples converted at a time; a longer FIFO read is taken in batches of this size.
-const BATCH: usize = 32;
+const BATCH: usize = 8;
 
 /// One attitude, fed from a gyro's FIFO: raw counts → body axes → bias removed → integrated.
 pub struct Attitude {
