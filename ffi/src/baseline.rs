@@ -86,7 +86,8 @@ mod kinds {
     use quatprop::stabilize::StabilizerKind;
     use quatprop::{input::History, Error, GyroSample, Propagator, Quat};
 
-    const BATCH: usize = 32;
+    /// As the quick start's (firmware/src/quickstart.rs): 8 samples kept in the struct.
+    const BATCH: usize = 8;
 
     pub struct KindAttitude {
         scale: CountScale<f32>,
@@ -94,6 +95,7 @@ mod kinds {
         bias: BiasEstimator<f32>,
         period: FixedPeriod<f32>,
         propagator: Propagator<f32, SchemeKind, History<f32>, StabilizerKind>,
+        batch: [GyroSample<f32>; BATCH],
         refused: u32,
     }
 
@@ -110,18 +112,18 @@ mod kinds {
                     History::new(),
                     StabilizerKind::FirstOrder,
                 )?,
+                batch: [GyroSample::default(); BATCH],
                 refused: 0,
             })
         }
 
         pub fn on_fifo(&mut self, fifo: &[[i16; 3]]) {
             for batch in fifo.chunks(BATCH) {
-                let mut body = [GyroSample::default(); BATCH];
-                for (slot, &counts) in body.iter_mut().zip(batch) {
+                for (slot, &counts) in self.batch.iter_mut().zip(batch) {
                     let sample = self.mounting.apply(self.scale.sample(counts));
                     *slot = self.bias.update(sample).unwrap_or(sample);
                 }
-                let mut rest = body.get(..batch.len()).unwrap_or(&[]);
+                let mut rest = self.batch.get(..batch.len()).unwrap_or(&[]);
                 while let Err(refused) = self.propagator.push_burst(rest, &mut self.period) {
                     self.refused += 1;
                     rest = rest.get(refused.index + 1..).unwrap_or(&[]);
