@@ -58,6 +58,9 @@ pub enum Error {
     InvalidClock,
     /// A bias estimator's window or memory is zero, or its stillness gate is not finite and positive.
     InvalidEstimator,
+    /// A gyro's count scale (full scale or sensitivity) is zero, negative or not finite, or its rad/s per
+    /// count is not a positive finite number in the working precision.
+    InvalidScale,
     /// The step produced a non-finite attitude (arithmetic overflow); the step was discarded.
     NonFiniteResult,
 }
@@ -88,6 +91,9 @@ impl fmt::Display for Error {
             Error::InvalidEstimator => f.write_str(
                 "bias estimator: window and memory must be positive, the gate finite and positive",
             ),
+            Error::InvalidScale => {
+                f.write_str("count scale: full scale or sensitivity must be finite and positive")
+            }
             Error::NonFiniteResult => f.write_str("step overflowed to a non-finite attitude"),
         }
     }

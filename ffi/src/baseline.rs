@@ -102,7 +102,7 @@ mod kinds {
     impl KindAttitude {
         pub fn new() -> Result<Self, Error> {
             Ok(Self {
-                scale: CountScale::full_scale_dps(2000.0),
+                scale: CountScale::full_scale_dps(2000.0)?,
                 mounting: AxisRemap::PyNxPz,
                 bias: BiasEstimator::new(1000, 0.05)?,
                 period: FixedPeriod::new(1.0e-3)?,

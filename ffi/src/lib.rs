@@ -559,10 +559,8 @@ pub unsafe extern "C" fn quatprop_set_count_scale_dps(
     // SAFETY: forwarded contract.
     unsafe {
         with(s, |st| {
-            if !(full_scale_dps > 0.0 && full_scale_dps <= f64::MAX) {
-                return Err(Fail::BadArgument);
-            }
-            st.front.scale = Some(CountScale::full_scale_dps(full_scale_dps));
+            let scale = CountScale::full_scale_dps(full_scale_dps).map_err(|_| Fail::BadArgument)?;
+            st.front.scale = Some(scale);
             Ok(())
         })
     }
@@ -581,10 +579,8 @@ pub unsafe extern "C" fn quatprop_set_count_sensitivity(
     // SAFETY: forwarded contract.
     unsafe {
         with(s, |st| {
-            if !(counts_per_dps > 0.0 && counts_per_dps <= f64::MAX) {
-                return Err(Fail::BadArgument);
-            }
-            st.front.scale = Some(CountScale::sensitivity(counts_per_dps));
+            let scale = CountScale::sensitivity(counts_per_dps).map_err(|_| Fail::BadArgument)?;
+            st.front.scale = Some(scale);
             Ok(())
         })
     }

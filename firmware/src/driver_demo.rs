@@ -58,7 +58,7 @@ pub fn run<SPI: SpiDevice>(spi: SPI, max_reads: u32) -> Result<(Outcome, SPI), D
         .initialize(NoDelay, config)
         .map_err(|_| DemoError::Init)?;
     let mut attitude = Attitude::new().map_err(|_| DemoError::Start)?;
-    let scale = CountScale::<f32>::full_scale_dps(2000.0);
+    let scale = CountScale::<f32>::full_scale_dps(2000.0).map_err(|_| DemoError::Start)?;
     let mut out = Outcome {
         samples: 0,
         bursts: 0,

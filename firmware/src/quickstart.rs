@@ -24,7 +24,7 @@ impl Attitude {
     /// A ±2000 °/s, 16-bit gyro at 1 kHz, mounted turned 90° about z (body x = sensor y).
     pub fn new() -> Result<Self, Error> {
         Ok(Self {
-            scale: CountScale::full_scale_dps(2000.0),
+            scale: CountScale::full_scale_dps(2000.0)?,
             mounting: AxisRemap::PyNxPz,
             // Learns the bias over 1 s windows while every axis stays within 0.05 rad/s (2.9 °/s).
             bias: BiasEstimator::new(1000, 0.05)?,

@@ -1,6 +1,6 @@
 //! Raw gyro counts to body rates.
 
-use crate::{GyroSample, Real, Vec3};
+use crate::{Error, GyroSample, Real, Vec3};
 
 /// The scale of a 16-bit gyro: rad/s per count, and the rails that mark a clipped axis.
 ///
@@ -9,13 +9,18 @@ use crate::{GyroSample, Real, Vec3};
 /// [`CountScale::sensitivity`] (counts per °/s as printed, e.g. 131, 65.5, 32.8, 16.4 for the MPU-6050's
 /// ±250…±2000 °/s ranges). A count at `i16::MIN` or `i16::MAX` on any axis marks the sample saturated.
 ///
+/// A scale that is zero, negative or not finite is refused with [`Error::InvalidScale`]: a zero scale
+/// would read every rate as zero and a negative one would reverse every axis, both silently.
+///
 /// ```
-/// use quatprop::frontend::CountScale;
-/// let scale = CountScale::<f64>::full_scale_dps(2000.0);
+/// use quatprop::{frontend::CountScale, Error};
+/// let scale = CountScale::<f64>::full_scale_dps(2000.0)?;
 /// let s = scale.sample([16384, 0, -32768]);
 /// assert!((s.rate.x - 1000f64.to_radians()).abs() < 1e-12); // half of full scale
 /// assert!(s.saturated); // z sits at the negative rail
-/// assert!(!CountScale::<f64>::sensitivity(131.0).sample([131, 0, 0]).saturated);
+/// assert!(!CountScale::<f64>::sensitivity(131.0)?.sample([131, 0, 0]).saturated);
+/// assert_eq!(CountScale::<f32>::sensitivity(-131.0), Err(Error::InvalidScale));
+/// # Ok::<(), Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -25,18 +30,30 @@ pub struct CountScale<T> {
 
 impl<T: Real> CountScale<T> {
     /// ±`full_scale` °/s over the 16-bit range: `full_scale/32768` °/s per count.
-    #[must_use]
-    pub fn full_scale_dps(full_scale: f64) -> Self {
-        Self {
-            rad_per_count: T::from_f64(full_scale.to_radians() / 32768.0),
-        }
+    ///
+    /// # Errors
+    /// [`Error::InvalidScale`] if `full_scale` is zero, negative or not finite, or the scale per count is
+    /// not a positive finite number in `T` (it underflows to zero or overflows).
+    pub fn full_scale_dps(full_scale: f64) -> Result<Self, Error> {
+        Self::from_rad_per_count(full_scale, full_scale.to_radians() / 32768.0)
     }
 
     /// `counts_per_dps` counts per °/s, as a datasheet prints it.
-    #[must_use]
-    pub fn sensitivity(counts_per_dps: f64) -> Self {
-        Self {
-            rad_per_count: T::from_f64(1f64.to_radians() / counts_per_dps),
+    ///
+    /// # Errors
+    /// [`Error::InvalidScale`] as for [`CountScale::full_scale_dps`].
+    pub fn sensitivity(counts_per_dps: f64) -> Result<Self, Error> {
+        Self::from_rad_per_count(counts_per_dps, 1f64.to_radians() / counts_per_dps)
+    }
+
+    /// The scale `rad_per_count` rounded once to `T`, if the datasheet figure `stated` and the scale are
+    /// positive and finite.
+    fn from_rad_per_count(stated: f64, rad_per_count: f64) -> Result<Self, Error> {
+        let k = T::from_f64(rad_per_count);
+        if stated > 0.0 && stated.is_finite() && k > T::ZERO && k.is_finite() {
+            Ok(Self { rad_per_count: k })
+        } else {
+            Err(Error::InvalidScale)
         }
     }
 

@@ -48,7 +48,10 @@ fn split_period<T: Real>(period: f64) -> Result<(T, T), Error> {
 pub struct FixedPeriod<T> {
     hi: T,
     lo: T,
+    /// The sub-ulp remainder of the time handed out so far (normally below half an ulp of `hi`).
     carry: T,
+    /// Intervals given back by [`FixedPeriod::carry_over`] and not yet handed out (normally zero).
+    owed: T,
 }
 
 impl<T: Real> FixedPeriod<T> {
@@ -63,6 +66,7 @@ impl<T: Real> FixedPeriod<T> {
             hi,
             lo,
             carry: T::ZERO,
+            owed: T::ZERO,
         })
     }
 
@@ -73,7 +77,8 @@ impl<T: Real> FixedPeriod<T> {
     }
 
     /// Gives back a `dt` this time base handed out for a sample that was refused: the interval goes into
-    /// the next [`FixedPeriod::next_dt`], so no time is lost (exact but for half an ulp of `dt` per call).
+    /// the next [`FixedPeriod::next_dt`], so no time is lost, however long the run of refused samples (the
+    /// interval is kept as an exact sum, not rounded into the carry).
     ///
     /// ```
     /// use quatprop::frontend::FixedPeriod;
@@ -85,17 +90,42 @@ impl<T: Real> FixedPeriod<T> {
     /// ```
     #[inline]
     pub fn carry_over(&mut self, dt: T) {
-        self.carry += dt;
+        let (owed, rounding) = two_sum(self.owed, dt);
+        self.owed = owed;
+        self.carry += rounding;
     }
 
     /// The `dt` (s) of the next sample: the period (plus any interval given back by
     /// [`FixedPeriod::carry_over`]), rounded so that the `dt`s sum to the exact elapsed time.
+    ///
+    /// Every `dt` is positive: after a `dt` covering a very long run of refused samples, its rounding (half
+    /// an ulp of that `dt`: 1 ms after 2²⁴ refused samples of 1 ms in f32) can exceed a period; a remainder
+    /// beyond an eighth of the period is then paid an eighth of a period per sample.
     #[inline]
     pub fn next_dt(&mut self) -> T {
         let e = self.carry + self.lo;
-        let dt = self.hi + e;
-        // dt − hi is exact (Sterbenz: hi ≤ dt ≤ 2hi, or dt within an ulp of hi), and so is e − (dt − hi).
-        self.carry = e - (dt - self.hi);
+        // Steady state: nothing owed and the remainder a fraction of an ulp of the period.
+        if self.owed == T::ZERO && e.abs() * T::from_f64(8.0) <= self.hi {
+            let dt = self.hi + e;
+            // Fast2Sum (|hi| ≥ |e|): dt − hi is exact, and so is e − (dt − hi).
+            self.carry = e - (dt - self.hi);
+            return dt;
+        }
+        self.next_dt_carrying()
+    }
+
+    /// [`FixedPeriod::next_dt`] with an interval owed or a remainder beyond an eighth of the period: the
+    /// period, the interval owed and the remainder summed exactly (2Sum); a negative remainder beyond an
+    /// eighth of that sum is left for the next samples.
+    #[inline(never)]
+    fn next_dt_carrying(&mut self) -> T {
+        let (a, rounding) = two_sum(self.hi, self.owed);
+        let e = (self.carry + self.lo) + rounding;
+        let floor = -a * T::from_f64(0.125);
+        let paid = if e < floor { floor } else { e };
+        let (dt, rest) = two_sum(a, paid);
+        self.carry = (e - paid) + rest;
+        self.owed = T::ZERO;
         dt
     }
 }

@@ -91,6 +91,20 @@ fn count_scale<T: Fz>(b: &mut Bytes<'_>) {
             T::from_f64(1f64.to_radians() / x),
         )
     };
+    // Refused (`InvalidScale`) exactly when the stated figure or the scale rounded to T is not positive and
+    // finite; otherwise the scale is the documented formula rounded once.
+    let valid = x > 0.0 && x.is_finite() && want > T::ZERO && want.is_finite();
+    let scale = match scale {
+        Ok(s) => {
+            assert!(valid, "scale {x:e} accepted as {want:?}");
+            s
+        }
+        Err(e) => {
+            assert_eq!(e, Error::InvalidScale);
+            assert!(!valid, "scale {x:e} refused");
+            return;
+        }
+    };
     let k = scale.rad_per_count();
     assert!(bits_or_nan(k, want), "rad_per_count {k:?} vs {want:?}");
     for _ in 0..16 {
