@@ -87,7 +87,7 @@ def run_bench():
     rows = {}
     quick = None
     for line in out.splitlines():
-        m = re.match(r"bench (\S+) (\S+) (\S+) (Plain|Kahan) ([\d.]+)$", line)
+        m = re.match(r"bench (\S+) (\S+) (\S+) (Plain|Kahan|FloatFloat) ([\d.]+)$", line)
         if m:
             rows[m.group(1, 2, 3, 4)] = float(m.group(5))
         q = re.match(r"bench quickstart on_fifo per-sample ([\d.]+) \(samples=(\d+), fixed=(\d+)\)", line)
@@ -95,7 +95,7 @@ def run_bench():
             quick = (float(q.group(1)), int(q.group(2)), int(q.group(3)))
     if "bench done" not in out or quick is None:
         raise SystemExit("bench did not finish:\n" + out)
-    expected = len(INPUTS) * len(SCHEMES) * 2 * 2
+    expected = len(INPUTS) * len(SCHEMES) * 2 * 3
     if len(rows) != expected:
         raise SystemExit(f"bench printed {len(rows)} rows, expected {expected}")
     return rows, quick
@@ -121,13 +121,13 @@ def run_burst():
 
 
 def write_bench_csv(rows):
-    """firmware/bench-m4f.csv: precision (f32, or f32-kahan for the compensated accumulator), scheme,
+    """firmware/bench-m4f.csv: precision (f32; f32-kahan, f32-floatfloat for those accumulators), scheme,
     stabilizer, input model, instructions per step (read by the lab's work-precision overlay)."""
     with open(os.path.join(FW, "bench-m4f.csv"), "w") as f:
         f.write("precision,scheme,stabilizer,input,instructions_per_step\n")
         for (inp, scheme, stab, acc), v in sorted(rows.items(), key=lambda kv: (kv[0][3], kv[0][1], kv[0][2],
                                                                                INPUTS.index(kv[0][0]))):
-            prec = "f32" if acc == "Plain" else "f32-kahan"
+            prec = {"Plain": "f32", "Kahan": "f32-kahan", "FloatFloat": "f32-floatfloat"}[acc]
             f.write(f"{prec},{scheme},{stab},{inp},{v}\n")
 
 
@@ -197,7 +197,7 @@ def document(bench, quick, burst, flash, stack, tools):
              "1.2 rad/s (the exponential maps' Taylor branch). These are instructions, not cycles: on silicon "
              "`vdiv.f32`/`vsqrt.f32` take 14 cycles and a load 2, so cycles are higher, most for Normalize "
              "(libm's `sqrtf` in software plus a division). Raw figures: `firmware/bench-m4f.csv`.\n")
-    for acc in ("Plain", "Kahan"):
+    for acc in ("Plain", "Kahan", "FloatFloat"):
         for stab in ("FirstOrder", "Normalize"):
             o.append(f"### {stab}, {acc} accumulator\n")
             o.append("| input model | " + " | ".join(SCHEMES) + " |")

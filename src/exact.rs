@@ -2,7 +2,7 @@
 //! TwoProduct with Veltkamp's splitting (Dekker 1971; Joldes, Muller, Popescu 2017). Exact for finite
 //! operands whose results do not overflow (TwoProduct also needs no underflow in the low part).
 
-use crate::Real;
+use crate::{Quat, Real, Vec3};
 
 /// `(s, e)` with `s = fl(a + b)` and `a + b = s + e` exactly.
 #[inline(always)]
@@ -37,6 +37,59 @@ pub(crate) fn two_product<T: Real>(a: T, b: T) -> (T, T) {
     (p, e)
 }
 
+/// `(s, e)` with `s = fl(a + b)` and `a + b = s + e` exactly, per component.
+#[inline(always)]
+pub(crate) fn two_sum_vec<T: Real>(a: Vec3<T>, b: Vec3<T>) -> (Vec3<T>, Vec3<T>) {
+    let (x, ex) = two_sum(a.x, b.x);
+    let (y, ey) = two_sum(a.y, b.y);
+    let (z, ez) = two_sum(a.z, b.z);
+    (Vec3::new(x, y, z), Vec3::new(ex, ey, ez))
+}
+
+/// `(p, e)` with `p = fl(v·k)` and `v·k = p + e` exactly, per component (k split once).
+#[inline(always)]
+pub(crate) fn two_product_vec<T: Real>(v: Vec3<T>, k: T) -> (Vec3<T>, Vec3<T>) {
+    let ks = split(k);
+    let tp = |a: T| product_of_splits(a, split(a), k, ks);
+    let ((x, ex), (y, ey), (z, ez)) = (tp(v.x), tp(v.y), tp(v.z));
+    (Vec3::new(x, y, z), Vec3::new(ex, ey, ez))
+}
+
+/// TwoProduct of `a·b` from their splits.
+#[inline(always)]
+fn product_of_splits<T: Real>(a: T, (ah, al): (T, T), b: T, (bh, bl): (T, T)) -> (T, T) {
+    let p = a * b;
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// The Hamilton product `q ⊗ p` as an unevaluated sum `hi + lo`, accurate as if computed in twice the
+/// working precision and rounded (Ogita–Rump–Oishi's Dot2 per component: 16 TwoProducts over 8 splits,
+/// the four terms summed with TwoSum, the low parts summed plainly).
+#[inline(always)]
+pub(crate) fn product<T: Real>(q: Quat<T>, p: Quat<T>) -> (Quat<T>, Quat<T>) {
+    let a = [q.w, q.x, q.y, q.z];
+    let b = [p.w, p.x, p.y, p.z];
+    let sa = a.map(split);
+    let sb = b.map(split);
+    // One component: Σ sign·a_i·b_j over four (i, j, negated) terms.
+    let dot = |terms: [(usize, usize, bool); 4]| {
+        let (mut hi, mut lo) = (T::ZERO, T::ZERO);
+        for (i, j, negated) in terms {
+            let (pr, e) = product_of_splits(a[i], sa[i], b[j], sb[j]);
+            let (pr, e) = if negated { (-pr, -e) } else { (pr, e) };
+            let (s, es) = two_sum(hi, pr);
+            hi = s;
+            lo += e + es;
+        }
+        (hi, lo)
+    };
+    let (w, lw) = dot([(0, 0, false), (1, 1, true), (2, 2, true), (3, 3, true)]);
+    let (x, lx) = dot([(0, 1, false), (1, 0, false), (2, 3, false), (3, 2, true)]);
+    let (y, ly) = dot([(0, 2, false), (1, 3, true), (2, 0, false), (3, 1, false)]);
+    let (z, lz) = dot([(0, 3, false), (1, 2, false), (2, 1, true), (3, 0, false)]);
+    (Quat::new(w, x, y, z), Quat::new(lw, lx, ly, lz))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,6 +116,48 @@ mod tests {
         for (a, b) in operands(200_000) {
             let (p, e) = two_product(a, b);
             assert_eq!(p as f64 + e as f64, a as f64 * b as f64, "{a:e} * {b:e}");
+        }
+    }
+
+    #[test]
+    fn quaternion_product_is_accurate_to_twice_the_precision() {
+        // The f64 product of f32 quaternions is exact but for the three additions per component
+        // (relative 2⁻⁵³ each); hi + lo must match it to far below f32's own rounding of the sum.
+        let mut ops = operands(40_000);
+        let mut next = || {
+            let (a, b) = ops.next().unwrap();
+            let (c, d) = ops.next().unwrap();
+            Quat::new(a, b, c, d)
+        };
+        for _ in 0..5_000 {
+            let (q, p) = (next(), next());
+            let (hi, lo) = product(q, p);
+            let (a, b) = (q.to_f64(), p.to_f64());
+            // Each f32 product is exact in f64; their sum, exact to 2⁻¹⁰⁶ as an f64 TwoSum pair.
+            let exact = |terms: [f64; 4]| {
+                let (mut s, mut e) = (0.0, 0.0);
+                for t in terms {
+                    let (s1, e1) = two_sum(s, t);
+                    s = s1;
+                    e += e1;
+                }
+                (s, e)
+            };
+            let want = [
+                exact([a.w * b.w, -a.x * b.x, -a.y * b.y, -a.z * b.z]),
+                exact([a.w * b.x, a.x * b.w, a.y * b.z, -a.z * b.y]),
+                exact([a.w * b.y, -a.x * b.z, a.y * b.w, a.z * b.x]),
+                exact([a.w * b.z, a.x * b.y, -a.y * b.x, a.z * b.w]),
+            ];
+            let got = [(hi.w, lo.w), (hi.x, lo.x), (hi.y, lo.y), (hi.z, lo.z)];
+            let scale = a.norm() * b.norm();
+            for ((h, l), (s, e)) in got.into_iter().zip(want) {
+                let err = ((f64::from(h) - s) + (f64::from(l) - e)).abs();
+                // Dot2: the low parts (4 product errors, 4 sum errors) summed plainly in f32, each term
+                // ≤ ε·scale, eight roundings: ≤ 8·ε·(8ε·scale) with ε = 2⁻²⁴.
+                let bound = 64.0 * 2f64.powi(-48) * scale;
+                assert!(err <= bound, "{q:?} {p:?}: off by {err:e} > {bound:e}");
+            }
         }
     }
 

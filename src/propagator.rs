@@ -161,7 +161,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             self.scheme.check(&segment, h)?;
             // Compute into locals (the accumulator is Copy), commit only on success.
             let mut acc = self.accumulator;
-            let advanced = acc.add(self.q, self.scheme.increment(self.q, &segment, h));
+            let advanced = acc.advance(self.q, &self.scheme, &segment, h);
             let pending = self.pending.saturating_add(1);
             let (q, corrected) = match self.stabilizer.correction(advanced, pending) {
                 Some(c) => (acc.add(advanced, c), true),

@@ -233,12 +233,45 @@ impl<T: Real> Quat<T> {
     pub(crate) fn exp_half_minus_one(v: Vec3<T>) -> Self {
         let x2 = v.norm_squared();
         if x2 < T::EXP_TAYLOR_MAX_SQ {
-            // cos x − 1 = −x²/2 + x⁴/24, sin x / x = 1 − x²/6 + x⁴/120 (next terms below ¼ ulp, see Real).
-            let cm1 = -(x2 * (T::HALF - x2 * T::from_f64(1.0 / 24.0)));
-            let s = T::ONE - x2 * (T::from_f64(1.0 / 6.0) - x2 * T::from_f64(1.0 / 120.0));
-            Self::from_parts(cm1, v * s)
+            let (cm1, sm1) = Self::exp_taylor(x2);
+            // v·(1 + (sin x/x − 1)): the factor rounds next to 1, but so would v + v·(sin x/x − 1) (the
+            // correction is below half an ulp of v for small steps); only a carried low part keeps it
+            // (`exp_half_minus_one_split`, the float-float accumulator).
+            Self::from_parts(cm1, v * (T::ONE + sm1))
         } else {
             Self::exp_half_minus_one_trig(v, x2)
+        }
+    }
+
+    /// `(cos x − 1, sin x/x − 1)` for `x² < EXP_TAYLOR_MAX_SQ`: `−x²/2 + x⁴/24` and `−x²/6 + x⁴/120`
+    /// (the next terms are below ¼ ulp, see `Real`).
+    #[inline(always)]
+    fn exp_taylor(x2: T) -> (T, T) {
+        let cm1 = -(x2 * (T::HALF - x2 * T::from_f64(1.0 / 24.0)));
+        let sm1 = -(x2 * (T::from_f64(1.0 / 6.0) - x2 * T::from_f64(1.0 / 120.0)));
+        (cm1, sm1)
+    }
+
+    /// `exp((0, v + low)) − 1` as an unevaluated sum `hi + lo` for a rotation vector given as `v + low`
+    /// (`low` far below `v`): `hi = (cos|v| − 1, v)`, `lo = (0, low + v·(sin|v|/|v| − 1))`, so the vector
+    /// part keeps `v` and `low` unrounded. Dropped: `O(|low|·|v|)` in the scalar part, which only scales the
+    /// attitude (the stabilizer's business), and `O(|low|·|v|²)` in the vector part. Beyond the Taylor range
+    /// the sum is rounded into `hi`.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn exp_half_minus_one_split(v: Vec3<T>, low: Vec3<T>) -> (Self, Self) {
+        let x2 = v.norm_squared();
+        if x2 < T::EXP_TAYLOR_MAX_SQ {
+            let (cm1, sm1) = Self::exp_taylor(x2);
+            (
+                Self::from_parts(cm1, v),
+                Self::from_parts(T::ZERO, low + v * sm1),
+            )
+        } else {
+            (
+                Self::exp_half_minus_one_trig(v + low, (v + low).norm_squared()),
+                Self::ZERO,
+            )
         }
     }
 

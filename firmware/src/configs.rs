@@ -1,11 +1,11 @@
 //! Every propagator configuration as concrete types, for the programs that must cover them all (`nopanic`,
 //! `stack`): each input model × each scheme (the eight zero-sized ones, the run-time `SchemeKind`, and
 //! Baumgarte on each Runge–Kutta scheme) × each post-step stabilizer (four zero-sized, the run-time
-//! `StabilizerKind`) × each accumulator (`Plain`, `Kahan`). A program implements [`Visitor`] and gets one
+//! `StabilizerKind`) × each accumulator (`Plain`, `Kahan`, `FloatFloat`). A program implements [`Visitor`] and gets one
 //! monomorphized call per configuration.
 
 use core::hint::black_box;
-use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use quatprop::input::coning::{ConingCorrection, ConingKind, TwoSample};
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
 use quatprop::scheme::{
@@ -147,6 +147,8 @@ pub trait Visitor {
     const PLAIN: bool = true;
     /// Visit the `Kahan` accumulator.
     const KAHAN: bool = true;
+    /// Visit the `FloatFloat` accumulator.
+    const FLOAT_FLOAT: bool = true;
     /// Visit the schemes without Baumgarte (the eight zero-sized ones and `SchemeKind`).
     const SCHEMES: bool = true;
     /// Visit Baumgarte on each Runge–Kutta scheme.
@@ -254,5 +256,14 @@ fn each_accumulator<V: Visitor, I: Input, S: Scheme<f32>, Z: Stabilizer>(
     }
     if V::KAHAN {
         v.visit(scheme, input, stabilizer, Kahan::new(), label("Kahan"));
+    }
+    if V::FLOAT_FLOAT {
+        v.visit(
+            scheme,
+            input,
+            stabilizer,
+            FloatFloat::new(),
+            label("FloatFloat"),
+        );
     }
 }

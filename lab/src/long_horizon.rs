@@ -20,7 +20,7 @@ use crate::dd;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, cell, sci, Csv, Table};
 use crate::Ctx;
-use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::{History, Hold, InputModel, Linear};
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
@@ -77,19 +77,21 @@ impl Motion {
     }
 }
 
-/// The lab's accumulators (every one quatprop has: `accumulate::{Plain, Kahan}`).
+/// The lab's accumulators (every one quatprop has: `accumulate::{Plain, Kahan, FloatFloat}`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Acc {
     Plain,
     Kahan,
+    FloatFloat,
 }
 
 impl Acc {
-    pub const ALL: [Acc; 2] = [Acc::Plain, Acc::Kahan];
+    pub const ALL: [Acc; 3] = [Acc::Plain, Acc::Kahan, Acc::FloatFloat];
     pub fn name(self) -> &'static str {
         match self {
             Acc::Plain => "Plain",
             Acc::Kahan => "Kahan",
+            Acc::FloatFloat => "FloatFloat",
         }
     }
 }
@@ -353,6 +355,7 @@ fn run_one(r: &Run, total: u64, bar: &indicatif::ProgressBar) -> Vec<PointRow> {
             match r.acc {
                 Acc::Plain => with_input!($s, $z, Plain),
                 Acc::Kahan => with_input!($s, $z, Kahan::new()),
+                Acc::FloatFloat => with_input!($s, $z, FloatFloat::new()),
             }
         };
     }

@@ -47,6 +47,14 @@ pub trait Segment<T: Real> {
     /// quadrature of this segment's own rate function (exact for it).
     fn half_angle(&self, hh: T) -> Vec3<T>;
 
+    /// [`Segment::half_angle`] as an unevaluated sum `hi + lo`, `lo` holding the rounding of its final
+    /// sum and product (TwoSum, TwoProduct): what [`crate::accumulate::FloatFloat`] carries. By default no
+    /// low part. `hi` need not equal `half_angle` bit for bit.
+    #[inline(always)]
+    fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
+        (self.half_angle(hh), Vec3::ZERO)
+    }
+
     /// `ω × dω/dc` at mid-step (rad²/s², `dω/dc` per unit fraction of the step), accurate to O(h³), or
     /// `None` if ω keeps its direction over the step. The second Magnus term of the exponential-map
     /// schemes is built from it.

@@ -2,8 +2,18 @@
 //! its own [`Segment`].
 
 use super::Segment;
+use crate::exact::{two_product_vec, two_sum_vec};
 use crate::gauss;
 use crate::{Real, Vec3};
+
+/// `(a + b)·k` as `hi + lo`: the sum's and the product's roundings kept (the rounding of `lo` itself and
+/// of `e·k` aside).
+#[inline(always)]
+fn sum_times_split<T: Real>(a: Vec3<T>, b: Vec3<T>, k: T) -> (Vec3<T>, Vec3<T>) {
+    let (s, e) = two_sum_vec(a, b);
+    let (p, pe) = two_product_vec(s, k);
+    (p, pe + e * k)
+}
 
 /// ω constant over the step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,6 +31,10 @@ impl<T: Real> Segment<T> for HeldRate<T> {
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
         self.0 * hh
+    }
+    #[inline(always)]
+    fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
+        two_product_vec(self.0, hh)
     }
     #[inline(always)]
     fn max_step_angle_squared(&self, h: T) -> T {
@@ -50,6 +64,10 @@ impl<T: Real> Segment<T> for LinearRate<T> {
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
         (self.w0 + self.w1) * (hh * T::HALF)
+    }
+    #[inline(always)]
+    fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
+        sum_times_split(self.w0, self.w1, hh * T::HALF)
     }
     /// `ω(½) × (ω₁ − ω₀) = ω₀ × ω₁` exactly for a linear rate.
     #[inline(always)]
@@ -246,6 +264,37 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
             }
         }
     }
+    /// The mean rate as `ω_k + correction` with that sum's rounding kept, times `hh` with TwoProduct
+    /// (the correction, a small difference of samples, rounds plainly).
+    #[inline(always)]
+    fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
+        let (w2, correction) = match self {
+            HistoryRate::Uniform { w, count } => {
+                let [w0, w1, w2, w3] = *w;
+                let d3 = w3 - w2;
+                let correction = match count {
+                    4 => {
+                        (d3 * T::from_f64(9.0) + (w2 - w1) * T::from_f64(4.0) - (w1 - w0))
+                            * T::from_f64(1.0 / 24.0)
+                    }
+                    3 => (d3 * T::from_f64(5.0) + (w2 - w1)) * T::from_f64(1.0 / 12.0),
+                    _ => return sum_times_split(w2, w3, hh * T::HALF),
+                };
+                (w2, correction)
+            }
+            HistoryRate::Newton { ends, d2, d3, r } => {
+                let [w2, w3] = *ends;
+                let k3 = T::from_f64(1.0 / 12.0) + *r * T::from_f64(1.0 / 6.0);
+                (
+                    w2,
+                    (w3 - w2) * T::HALF - *d2 * T::from_f64(1.0 / 6.0) - *d3 * k3,
+                )
+            }
+        };
+        let (mean, e) = two_sum_vec(w2, correction);
+        let (p, pe) = two_product_vec(mean, hh);
+        (p, pe + e * hh)
+    }
     /// `ω(½) × (ω_{k+1} − ω_k)`: uniform, ω(½) from the interpolant; Newton, ω(½) ≈ (ω_k + ω_{k+1})/2,
     /// which makes it `ω_k × ω_{k+1}` (the O(h²) difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is
     /// `ω'(½)` to O(h³).
@@ -303,6 +352,10 @@ impl<T: Real> Segment<T> for GaussRates<T> {
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
         (self.w1 + self.w2) * (hh * T::HALF)
+    }
+    #[inline(always)]
+    fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
+        sum_times_split(self.w1, self.w2, hh * T::HALF)
     }
     /// `ω(½) × ω'(½) = ½(ω₁ + ω₂) × √3(ω₂ − ω₁) = √3 ω₁ × ω₂` exactly for the linear interpolant.
     #[inline(always)]

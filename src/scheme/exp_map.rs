@@ -3,6 +3,7 @@
 //! describe their rate function ([`Segment`]).
 
 use super::{Information, Scheme};
+use crate::exact::two_sum_vec;
 use crate::gauss;
 use crate::input::segment::GaussRates;
 use crate::input::Segment;
@@ -69,6 +70,18 @@ impl<T: Real> Scheme<T> for ExpMap {
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
         q * Quat::exp_half_minus_one(magnus4_half_angle(segment, h * T::HALF))
     }
+    /// `exp_q(φ) − 1` with `φ/2` kept as `hi + lo`: the rounding of the angle integral's final sum and
+    /// product, and the commutator term, in `lo`.
+    #[inline(always)]
+    fn right_factor<G: Segment<T>>(&self, segment: &G, h: T) -> (Quat<T>, Quat<T>) {
+        let hh = h * T::HALF;
+        let (v, low) = segment.half_angle_split(hh);
+        let (v, low) = match segment.rate_commutator() {
+            Some(c) => two_sum_vec(v, low + c * (hh * hh * T::from_f64(1.0 / 6.0))),
+            None => (v, low),
+        };
+        Quat::exp_half_minus_one_split(v, low)
+    }
 }
 
 /// Magnus-4 from the rates at the two Gauss nodes of the step:
@@ -103,6 +116,14 @@ impl<T: Real> Scheme<T> for Magnus4 {
             w2: segment.rate_at(gauss::NODE_2),
         };
         ExpMap.increment(q, &at_nodes, h)
+    }
+    #[inline(always)]
+    fn right_factor<G: Segment<T>>(&self, segment: &G, h: T) -> (Quat<T>, Quat<T>) {
+        let at_nodes = GaussRates {
+            w1: segment.rate_at(gauss::NODE_1),
+            w2: segment.rate_at(gauss::NODE_2),
+        };
+        ExpMap.right_factor(&at_nodes, h)
     }
 }
 

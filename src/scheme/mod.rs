@@ -101,6 +101,16 @@ pub trait Scheme<T: Real>: Copy {
     /// formed without the cancellation of `q + Δ − q` so that [`crate::accumulate`] can add it with
     /// compensation. No checks: call [`Scheme::check`] first (the propagator does).
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T>;
+
+    /// The step as a right factor, an unevaluated sum `hi + lo`: the new attitude is
+    /// `q ⊗ (1 + hi + lo)` (body-frame rates act on the right, so every scheme's step is one; for
+    /// [`Baumgarte`], whose term depends on `|q|`, this holds for a unit `q`). What
+    /// [`crate::accumulate::FloatFloat`] multiplies exactly. By default [`Scheme::increment`] from the
+    /// identity, with no low part; the exponential maps keep the rounding of the rotation vector in `lo`.
+    #[inline(always)]
+    fn right_factor<G: Segment<T>>(&self, segment: &G, h: T) -> (Quat<T>, Quat<T>) {
+        (self.increment(Quat::IDENTITY, segment, h), Quat::ZERO)
+    }
 }
 
 /// The step-angle check shared by every scheme: `max|ω·h| ≤ limit` (skipped for an infinite limit).
@@ -187,5 +197,9 @@ impl<T: Real> Scheme<T> for SchemeKind {
     #[inline]
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
         each!(self, s => s.increment(q, segment, h))
+    }
+    #[inline]
+    fn right_factor<G: Segment<T>>(&self, segment: &G, h: T) -> (Quat<T>, Quat<T>) {
+        each!(self, s => s.right_factor(segment, h))
     }
 }

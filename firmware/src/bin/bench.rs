@@ -1,6 +1,6 @@
 //! Instructions per step on the Cortex-M4F, counted with SysTick under QEMU `-icount shift=10`, for every
 //! input model (Hold, Linear, History, TwiceRate, GaussPoints, DeltaAngles with TwoSample) × scheme (ExpMap,
-//! Magnus4, Cf4, Rk4) × stabilizer (FirstOrder, Normalize) × accumulator (Plain, Kahan) in f32, and the
+//! Magnus4, Cf4, Rk4) × stabilizer (FirstOrder, Normalize) × accumulator (Plain, Kahan, FloatFloat) in f32, and the
 //! README quick start's `Attitude::on_fifo` per sample (raw counts in, a FIFO burst of 32).
 //!
 //! Each figure is (instructions of a loop of pushes − instructions of the same loop without the push) per
@@ -15,7 +15,7 @@
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use quatprop::input::coning::TwoSample;
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
 use quatprop::scheme::{Cf4, ExpMap, Magnus4, Rk4, Scheme};
@@ -115,6 +115,11 @@ fn accumulators<S: Scheme<f32>, I: Input, Z: Stabilizer>(
     let what = |a| [i.name(), names[0], names[1], a];
     report(ok, what("Plain"), measure(c, s, i, z, Plain));
     report(ok, what("Kahan"), measure(c, s, i, z, Kahan::new()));
+    report(
+        ok,
+        what("FloatFloat"),
+        measure(c, s, i, z, FloatFloat::new()),
+    );
 }
 
 fn stabilizers<S: Scheme<f32>, I: Input>(c: &Counter, ok: &mut bool, s: S, i: I, name: &str) {

@@ -35,9 +35,15 @@ use quatprop_firmware::configs::{each_scheme, Input, Label, Visitor};
 
 struct Exercise;
 
+const ONE_ACCUMULATOR: bool = cfg!(feature = "nopanic-plain")
+    || cfg!(feature = "nopanic-kahan")
+    || cfg!(feature = "nopanic-floatfloat");
+
 impl Visitor for Exercise {
-    const PLAIN: bool = !cfg!(feature = "nopanic-kahan") || cfg!(feature = "nopanic-plain");
-    const KAHAN: bool = !cfg!(feature = "nopanic-plain") || cfg!(feature = "nopanic-kahan");
+    // An accumulator feature selects that accumulator only; none selects every one.
+    const PLAIN: bool = !ONE_ACCUMULATOR || cfg!(feature = "nopanic-plain");
+    const KAHAN: bool = !ONE_ACCUMULATOR || cfg!(feature = "nopanic-kahan");
+    const FLOAT_FLOAT: bool = !ONE_ACCUMULATOR || cfg!(feature = "nopanic-floatfloat");
     const SCHEMES: bool = !cfg!(feature = "nopanic-baumgarte") || cfg!(feature = "nopanic-schemes");
     const BAUMGARTE: bool =
         !cfg!(feature = "nopanic-schemes") || cfg!(feature = "nopanic-baumgarte");
