@@ -3,7 +3,7 @@
 //! 10⁸ steps, for each accumulator, on a constant rate and on coning at an incommensurate frequency.
 //!
 //! `cargo run --release --example own_error -- [--steps N] [--out DIR]`
-use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::{History, Hold, InputModel, Linear};
 use quatprop::scheme::ExpMap;
@@ -95,8 +95,13 @@ fn main() {
     for c in &checkpoints {
         write!(md, " own error at {c:.0e} (rad) |").unwrap();
     }
-    writeln!(md, " growth exponent |").unwrap();
-    writeln!(md, "|{}", "---|".repeat(4 + checkpoints.len())).unwrap();
+    writeln!(
+        md,
+        " growth exponent | Cortex-M4F instructions per step (ExpMap + FirstOrder) |"
+    )
+    .unwrap();
+    writeln!(md, "|{}", "---|".repeat(5 + checkpoints.len())).unwrap();
+    let m4f = m4f_instructions();
     for (mname, m) in [
         ("constant 1 rad/s", Motion::Constant),
         ("coning, Ω = 2π/√2", Motion::Coning),
@@ -129,6 +134,33 @@ fn main() {
                     Kahan::new(),
                 ),
             ),
+            (
+                "Hold",
+                "FloatFloat",
+                run(m, &checkpoints, Hold, Hold, FloatFloat::new()),
+            ),
+            (
+                "Linear",
+                "FloatFloat",
+                run(
+                    m,
+                    &checkpoints,
+                    Linear::new(),
+                    Linear::new(),
+                    FloatFloat::new(),
+                ),
+            ),
+            (
+                "History",
+                "FloatFloat",
+                run(
+                    m,
+                    &checkpoints,
+                    History::new(),
+                    History::new(),
+                    FloatFloat::new(),
+                ),
+            ),
         ];
         for (input, acc, errs) in rows {
             write!(md, "| {mname} | {input} | {acc} |").unwrap();
@@ -140,12 +172,56 @@ fn main() {
             } else {
                 f64::NAN
             };
-            writeln!(md, " {slope:.2} |").unwrap();
+            let cost = m4f
+                .iter()
+                .find(|(a, i, _)| a == acc && i.eq_ignore_ascii_case(input))
+                .map_or("not measured".to_string(), |(_, _, n)| format!("{n:.1}"));
+            writeln!(md, " {slope:.2} | {cost} |").unwrap();
         }
     }
+    writeln!(
+        md,
+        "\nOwn error: the angle between the f32 attitude and an f64 propagator (Kahan) fed the same f32 \
+         samples and the same f32 periods (`FixedPeriod`), so the only difference is the f32 arithmetic; \
+         10⁸ steps and the error against physical time are in the lab's long-horizon study \
+         ([report](report/README.md#long-horizon-in-f32-own-error-and-error-against-physical-time)). \
+         Instructions: `firmware/bench-m4f.csv` (`python3 firmware/figures.py`, QEMU `-icount`; docs/firmware.md).\n\n\
+         Which accumulator: `Plain` while its own error stays below what the gyro itself contributes over \
+         the run (its drift grows linearly with the steps: read the rows above at your horizon); \
+         `FloatFloat` for long runs in f32, where it keeps the attitude at its output's rounding at several \
+         times the step's instructions; `Kahan` sits between them."
+    )
+    .unwrap();
     writeln!(md, "\nRun time {:.0} s.", start.elapsed().as_secs_f64()).unwrap();
     print!("{md}");
     if let Some(dir) = out_dir {
         std::fs::write(format!("{dir}/own_error.md"), md).unwrap();
     }
+}
+
+/// (accumulator, input, instructions per step) for ExpMap + FirstOrder from `firmware/bench-m4f.csv`.
+fn m4f_instructions() -> Vec<(String, String, f64)> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/firmware/bench-m4f.csv");
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Vec::new();
+    };
+    text.lines()
+        .skip(1)
+        .filter_map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let acc = match *f.first()? {
+                "f32" => "Plain",
+                "f32-kahan" => "Kahan",
+                "f32-floatfloat" => "FloatFloat",
+                _ => return None,
+            };
+            (f.get(1)? == &"ExpMap" && f.get(2)? == &"FirstOrder").then(|| {
+                Some((
+                    acc.to_string(),
+                    f.get(3)?.to_string(),
+                    f.get(4)?.parse().ok()?,
+                ))
+            })?
+        })
+        .collect()
 }

@@ -17,7 +17,7 @@
 //!   10⁸ steps where `Plain` and `Kahan` drift (docs/report, "Long horizon"); about three times the
 //!   arithmetic of a step, and 16 bytes of state (f32).
 
-use crate::exact::{product, two_sum};
+use crate::exact::{product_by_vector, two_sum};
 use crate::input::Segment;
 use crate::scheme::Scheme;
 use crate::{Quat, Real};
@@ -107,10 +107,10 @@ impl<T: Real> Accumulator<T> for Kahan<T> {
 /// Float-float state: the attitude is `q + l`, `l` the low part kept here; each step is the exact product
 /// `(q + l) ⊗ (1 + hi + lo)` of the scheme's right factor ([`Scheme::right_factor`]), added with TwoSum.
 ///
-/// What is exact: `q ⊗ hi` (16 TwoProducts, Dot2 summation), the addition to `q` (TwoSum), the rounding
-/// of the rotation vector's final sum and product (the exponential maps' `lo`). What rounds, far below f32's
-/// ulp of the attitude: the low-order terms `q ⊗ lo + l ⊗ hi` and the scalar part of the right factor
-/// (which only scales the attitude). [`Propagator::attitude`](crate::Propagator::attitude) is `q`, the
+/// What is exact: `q ⊗ (0, h⃗)` for the vector part `h⃗` of `hi` (12 TwoProducts, Dot2 summation), the
+/// addition to `q` (TwoSum), the rounding of the rotation vector's final sum and product (the exponential
+/// maps' `lo`). What rounds, far below f32's ulp of the attitude: the low-order terms `q ⊗ lo + l ⊗ hi`,
+/// and `q` times the scalar part of `hi`, which only scales the attitude (the stabilizer's business). [`Propagator::attitude`](crate::Propagator::attitude) is `q`, the
 /// high part.
 ///
 /// ```
@@ -182,9 +182,11 @@ impl<T: Real> Accumulator<T> for FloatFloat<T> {
         h: T,
     ) -> Quat<T> {
         let (p, p_low) = scheme.right_factor(segment, h);
-        // (q + l) ⊗ (p + p_low) = q ⊗ p (exact: d + d_low) + q ⊗ p_low + l ⊗ p (+ l ⊗ p_low, negligible).
-        let (d, d_low) = product(q, p);
-        let small = d_low + q * p_low + self.low * p;
+        // (q + l) ⊗ (p + p_low) = q ⊗ (0, p⃗) (exact: d + d_low) + p_w·q + q ⊗ p_low + l ⊗ p
+        // (+ l ⊗ p_low, negligible). p_w = cos|φ/2| − 1 only scales q (radial: no attitude error from its
+        // rounding), so it is multiplied plainly, as is everything below ulp level.
+        let (d, d_low) = product_by_vector(q, p.vector());
+        let small = d_low + q * p.w + q * p_low + self.low * p;
         self.add_split(q, d, small)
     }
     #[inline(always)]

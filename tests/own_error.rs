@@ -7,7 +7,8 @@
 //! - the f32 attitude is the high part `q` of `q + l`: each component within half an ulp (≤ u for
 //!   components below 1) of the float-float value, so its direction is off by at most `2·2u·√4/2 = 4u`;
 //! - per step, what rounds in f32: the low-order terms `q ⊗ lo + l ⊗ hi + (Dot2's low parts)`, each of size
-//!   ≤ 2uθ, summed with at most 5 roundings: ≤ 5u·(3·2uθ) = 30u²θ;
+//!   ≤ 2uθ, summed with at most 5 roundings: ≤ 5u·(3·2uθ) = 30u²θ; and `q·(cos θ − 1)`, ≤ θ²/2 per
+//!   component, rounded plainly: ≤ u·θ² (mostly radial, counted whole);
 //! - the sample history's correction `(9Δ₃ + 4Δ₂ − Δ₁)/24` (differences of samples) is rounded plainly
 //!   (3 roundings of terms up to 14/24·max|Δω|) before its TwoSum with `ω_k`: ≤ 3u·(14/24)·max|Δω|·hh per
 //!   step;
@@ -97,6 +98,7 @@ where
         .map(|k| rate(m, k * 997).norm() * hh * (1.0 + 1e-3))
         .fold(0.0, f64::max);
     let per_step = 30.0 * u * u * theta
+        + u * theta * theta
         + if history {
             3.0 * u * (14.0 / 24.0) * max_change * hh
         } else {
