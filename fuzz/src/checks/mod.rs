@@ -219,7 +219,15 @@ pub fn vec_bits<T: Fz>(v: Vec3<T>) -> [u64; 3] {
 /// Euclidean norm of a vector, in f64.
 pub fn norm64<T: Real>(v: Vec3<T>) -> f64 {
     let v = v.to_f64();
-    (v.x * v.x + v.y * v.y + v.z * v.z).sqrt()
+    // Scaled by the largest component first: squaring a rate of 1e-289 rad/s underflows to 0 in f64, and
+    // over a step of 1e287 s that rate turns 0.017 rad (found by `push`: the mirror's step-angle bound read
+    // 0 rad and the FirstOrder bound was applied to a 0.017 rad Euler step).
+    let s = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if !(s > 0.0 && s.is_finite()) {
+        return if v.x.is_nan() || v.y.is_nan() || v.z.is_nan() { f64::NAN } else { s };
+    }
+    let (x, y, z) = (v.x / s, v.y / s, v.z / s);
+    s * (x * x + y * y + z * z).sqrt()
 }
 
 /// The rotation angle between two attitudes, measured in f64 on the widened components (exact widening;
