@@ -13,9 +13,9 @@
 //! - [`FloatFloat`]: the attitude as an unevaluated sum `q + l` of two quaternions (twice the working
 //!   precision), advanced by the step's exact product `(q + l) ⊗ (1 + p)`: the scheme's right factor `p`
 //!   with its own low part ([`Scheme::right_factor`]), multiplied with error-free products (Dekker's
-//!   TwoProduct, no FMA) and added with TwoSum. In f32 its own error stays at the level of its inputs over
-//!   10⁸ steps where `Plain` and `Kahan` drift (docs/report, "Long horizon"); about three times the
-//!   arithmetic of a step, and 16 bytes of state (f32).
+//!   TwoProduct, no FMA) and added with TwoSum. In f32 its own error stays at the rounding of its output
+//!   over 10⁸ steps where `Plain` and `Kahan` drift linearly (docs/report, "Long horizon"), for several
+//!   times the instructions of a plain step (docs/own_error.md), and 16 bytes of state (f32).
 
 use crate::exact::{product_by_vector, two_sum};
 use crate::input::Segment;
@@ -149,6 +149,18 @@ impl<T: Real> FloatFloat<T> {
         self.low
     }
 
+    /// `q + l ← (q + l) ⊗ (1 + p + p_low)`, returning the new `q`. One copy per precision, not per scheme
+    /// and input model (the exact product is long; a firmware naming several configurations links it once).
+    #[inline(never)]
+    fn multiply(&mut self, q: Quat<T>, p: Quat<T>, p_low: Quat<T>) -> Quat<T> {
+        // (q + l) ⊗ (p + p_low) = q ⊗ (0, p⃗) (exact: d + d_low) + p_w·q + q ⊗ p_low + l ⊗ p
+        // (+ l ⊗ p_low, negligible). p_w = cos|φ/2| − 1 only scales q (radial: no attitude error from its
+        // rounding), so it is multiplied plainly, as is everything below ulp level.
+        let (d, d_low) = product_by_vector(q, p.vector());
+        let small = d_low + q * p.w + q * p_low + self.low * p;
+        self.add_split(q, d, small)
+    }
+
     /// `(q + l) + (d + small)` → `(q', l')`, `q'` the rounded sum and `l'` the rest (TwoSum twice).
     #[inline(always)]
     fn add_split(&mut self, q: Quat<T>, d: Quat<T>, small: Quat<T>) -> Quat<T> {
@@ -182,12 +194,7 @@ impl<T: Real> Accumulator<T> for FloatFloat<T> {
         h: T,
     ) -> Quat<T> {
         let (p, p_low) = scheme.right_factor(segment, h);
-        // (q + l) ⊗ (p + p_low) = q ⊗ (0, p⃗) (exact: d + d_low) + p_w·q + q ⊗ p_low + l ⊗ p
-        // (+ l ⊗ p_low, negligible). p_w = cos|φ/2| − 1 only scales q (radial: no attitude error from its
-        // rounding), so it is multiplied plainly, as is everything below ulp level.
-        let (d, d_low) = product_by_vector(q, p.vector());
-        let small = d_low + q * p.w + q * p_low + self.low * p;
-        self.add_split(q, d, small)
+        self.multiply(q, p, p_low)
     }
     #[inline(always)]
     fn reset(&mut self) {

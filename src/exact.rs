@@ -64,37 +64,34 @@ fn product_of_splits<T: Real>(a: T, (ah, al): (T, T), b: T, (bh, bl): (T, T)) ->
 
 /// The Hamilton product `q ⊗ (0, v)` as an unevaluated sum `hi + lo`, accurate as if computed in twice the
 /// working precision and rounded (Ogita–Rump–Oishi's Dot2 per component: 12 TwoProducts over 7 splits,
-/// the three terms summed with TwoSum, the low parts summed plainly).
+/// the three terms summed with TwoSum, the low parts summed plainly). Written out term by term: no
+/// indexing, so nothing on this path can panic.
 #[inline(always)]
 pub(crate) fn product_by_vector<T: Real>(q: Quat<T>, v: Vec3<T>) -> (Quat<T>, Quat<T>) {
-    let a = [q.w, q.x, q.y, q.z];
-    let b = [v.x, v.y, v.z];
-    let sa = a.map(split);
-    let sb = b.map(split);
-    // One component: Σ sign·a_i·b_j over three (i, j, negated) terms.
-    let dot = |terms: [(usize, usize, bool); 3]| {
-        let term = |(i, j, negated): (usize, usize, bool)| {
-            let (pr, e) = product_of_splits(a[i], sa[i], b[j], sb[j]);
-            if negated {
-                (-pr, -e)
-            } else {
-                (pr, e)
-            }
-        };
-        let (mut hi, mut lo) = term(terms[0]);
-        for t in [terms[1], terms[2]] {
-            let (pr, e) = term(t);
-            let (s, es) = two_sum(hi, pr);
-            hi = s;
-            lo += e + es;
-        }
-        (hi, lo)
-    };
-    let (w, lw) = dot([(1, 0, true), (2, 1, true), (3, 2, true)]);
-    let (x, lx) = dot([(0, 0, false), (2, 2, false), (3, 1, true)]);
-    let (y, ly) = dot([(0, 1, false), (1, 2, true), (3, 0, false)]);
-    let (z, lz) = dot([(0, 2, false), (1, 1, false), (2, 0, true)]);
-    (Quat::new(w, x, y, z), Quat::new(lw, lx, ly, lz))
+    let (w, x, y, z) = (
+        (q.w, split(q.w)),
+        (q.x, split(q.x)),
+        (q.y, split(q.y)),
+        (q.z, split(q.z)),
+    );
+    let (vx, vy, vz) = ((v.x, split(v.x)), (v.y, split(v.y)), (v.z, split(v.z)));
+    let tp = |(a, sa): (T, (T, T)), (b, sb): (T, (T, T))| product_of_splits(a, sa, b, sb);
+    let neg = |(p, e): (T, T)| (-p, -e);
+    // w = −(q⃗·v), x = q_w v_x + q_y v_z − q_z v_y, y = q_w v_y − q_x v_z + q_z v_x,
+    // z = q_w v_z + q_x v_y − q_y v_x.
+    let (hw, lw) = dot3(neg(tp(x, vx)), neg(tp(y, vy)), neg(tp(z, vz)));
+    let (hx, lx) = dot3(tp(w, vx), tp(y, vz), neg(tp(z, vy)));
+    let (hy, ly) = dot3(tp(w, vy), neg(tp(x, vz)), tp(z, vx));
+    let (hz, lz) = dot3(tp(w, vz), tp(x, vy), neg(tp(y, vx)));
+    (Quat::new(hw, hx, hy, hz), Quat::new(lw, lx, ly, lz))
+}
+
+/// Dot2's sum of three exact products `(p, e)`: the `p` summed with TwoSum, every low part gathered.
+#[inline(always)]
+fn dot3<T: Real>((p0, e0): (T, T), (p1, e1): (T, T), (p2, e2): (T, T)) -> (T, T) {
+    let (s1, f1) = two_sum(p0, p1);
+    let (s2, f2) = two_sum(s1, p2);
+    (s2, (e0 + e1 + e2) + (f1 + f2))
 }
 
 #[cfg(test)]

@@ -385,16 +385,20 @@ pub fn runs() -> Vec<Run> {
             }
         }
     }
-    for scheme in SchemeKind::ALL {
-        if scheme != SchemeKind::ExpMap {
-            v.push(Run {
-                group: "scheme",
-                motion: Motion::Constant,
-                scheme,
-                stabilizer: StabilizerKind::FirstOrder,
-                input: In::Hold,
-                acc: Acc::Plain,
-            });
+    // Every other scheme, plain and float-float (the Runge–Kutta schemes and Cf4 hand FloatFloat their step
+    // as a rounded right factor with no low part; Magnus4 keeps its rotation vector's rounding like ExpMap).
+    for acc in [Acc::Plain, Acc::FloatFloat] {
+        for scheme in SchemeKind::ALL {
+            if scheme != SchemeKind::ExpMap {
+                v.push(Run {
+                    group: "scheme",
+                    motion: Motion::Constant,
+                    scheme,
+                    stabilizer: StabilizerKind::FirstOrder,
+                    input: In::Hold,
+                    acc,
+                });
+            }
         }
     }
     for motion in [Motion::Constant, Motion::Coning] {
@@ -531,18 +535,17 @@ pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
         .into_iter()
         .map(Series::dashed),
     );
-    let mut schemes = series(&|r| r.group == "scheme", |p| p.own_error_rad, &|r| {
-        scheme_name(r.scheme).into()
-    });
+    let scheme_acc = |r: &Run| format!("{} + {}", scheme_name(r.scheme), r.acc.name());
+    let mut schemes = series(&|r| r.group == "scheme", |p| p.own_error_rad, &scheme_acc);
     schemes.extend(series(
         &|r| {
             r.group == "accumulator × input"
                 && r.motion == Motion::Constant
                 && r.input == In::Hold
-                && r.acc == Acc::Plain
+                && r.acc != Acc::Kahan
         },
         |p| p.own_error_rad,
-        &|r| scheme_name(r.scheme).into(),
+        &scheme_acc,
     ));
     let norm = series(
         &|r| {
@@ -576,7 +579,7 @@ pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
         ),
         (
             "long_horizon",
-            "Constant 1 rad/s, f32, Hold + FirstOrder + Plain: own error of every scheme",
+            "Constant 1 rad/s, f32, Hold + FirstOrder: own error of every scheme, Plain and FloatFloat",
             err_axis("own error: angle to the f64 shadow (rad)"),
             schemes,
         ),
@@ -600,9 +603,11 @@ pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
             .map(|(s, _)| s.clone())
     };
     let mut headline = String::new();
-    if let (Some(p), Some(k)) = (
+    if let (Some(p), Some(k), Some(f), Some(c)) = (
         find(Motion::Coning, In::History, Acc::Plain),
         find(Motion::Coning, In::History, Acc::Kahan),
+        find(Motion::Coning, In::History, Acc::FloatFloat),
+        find(Motion::Constant, In::Hold, Acc::FloatFloat),
     ) {
         headline = format!(
             "On incommensurate coning with the sample history after {total:.0e} steps, plain f32 is {:.2e} rad from its \
@@ -611,14 +616,22 @@ pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
              from the physical motion: that is the f32 samples' rounding (the cone's constant axial rate \
              −2Ω sin²(α/2) rounds the same way every sample, a biased floor that grows linearly), and an f32 run can \
              land closer to the physical motion than its own shadow only by its arithmetic error cancelling part \
-             of that floor, which is why the own error is the measure of the arithmetic. ",
+             of that floor, which is why the own error is the measure of the arithmetic. FloatFloat's own error \
+             on the same stream is {:.2e} rad (exponent {:.2}), and {:.2e} rad on the constant rate: about the \
+             rounding of an f32 attitude itself (half an ulp of each component, up to {:.1e} rad), flat over the \
+             decades; its physical-time error is {:.2e} rad, the shadow's. ",
             p.own_error_at_end,
             p.own_growth,
             p.physical_error_at_end,
             k.own_error_at_end,
             k.own_growth,
             k.physical_error_at_end,
-            k.f64_physical_error_at_end
+            k.f64_physical_error_at_end,
+            f.own_error_at_end,
+            f.own_growth,
+            c.own_error_at_end,
+            f64::from(f32::EPSILON),
+            f.physical_error_at_end,
         );
     }
     format!(

@@ -224,7 +224,11 @@ pub fn norm64<T: Real>(v: Vec3<T>) -> f64 {
     // 0 rad and the FirstOrder bound was applied to a 0.017 rad Euler step).
     let s = v.x.abs().max(v.y.abs()).max(v.z.abs());
     if !(s > 0.0 && s.is_finite()) {
-        return if v.x.is_nan() || v.y.is_nan() || v.z.is_nan() { f64::NAN } else { s };
+        return if v.x.is_nan() || v.y.is_nan() || v.z.is_nan() {
+            f64::NAN
+        } else {
+            s
+        };
     }
     let (x, y, z) = (v.x / s, v.y / s, v.z / s);
     s * (x * x + y * y + z * z).sqrt()
