@@ -36,7 +36,13 @@ fn rate(m: Motion, k: u64) -> Vec3<f32> {
     Vec3::new(w.x as f32, w.y as f32, w.z as f32)
 }
 
-fn run<I32, I64, A>(motion: Motion, checkpoints: &[u64], i32m: I32, i64m: I64, acc: A) -> Vec<f64>
+fn run<I32, I64, A>(
+    motion: Motion,
+    checkpoints: &[u64],
+    i32m: I32,
+    i64m: I64,
+    acc: A,
+) -> (Vec<f64>, f64)
 where
     I32: InputModel<f32, Sample = GyroSample<f32>>,
     I64: InputModel<f64, Sample = GyroSample<f64>>,
@@ -63,7 +69,34 @@ where
             next += 1;
         }
     }
-    out
+    (out, host_ns(motion, i32m, acc))
+}
+
+/// Host nanoseconds per push of the f32 propagator alone (samples and dts precomputed): the least of
+/// five runs of 10⁶ pushes.
+fn host_ns<I, A>(motion: Motion, input: I, acc: A) -> f64
+where
+    I: InputModel<f32, Sample = GyroSample<f32>>,
+    A: Accumulator<f32>,
+{
+    const N: usize = 1_000_000;
+    let mut period = FixedPeriod::<f32>::new(1e-3).unwrap();
+    let stream: Vec<(GyroSample<f32>, f32)> = (0..N as u64)
+        .map(|k| (GyroSample::new(rate(motion, k)), period.next_dt()))
+        .collect();
+    (0..5)
+        .map(|_| {
+            let mut p = Propagator::new(Quat::IDENTITY, ExpMap, input, FirstOrder)
+                .unwrap()
+                .with_accumulator(acc);
+            let t0 = std::time::Instant::now();
+            for &(sample, dt) in std::hint::black_box(&stream) {
+                let _ = std::hint::black_box(p.push(sample, dt));
+            }
+            std::hint::black_box(p.attitude());
+            t0.elapsed().as_secs_f64() * 1e9 / N as f64
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 fn main() {
@@ -97,16 +130,16 @@ fn main() {
     }
     writeln!(
         md,
-        " growth exponent | Cortex-M4F instructions per step (ExpMap + FirstOrder) |"
+        " growth exponent | Cortex-M4F instructions per step (ExpMap + FirstOrder) | host ns per step |"
     )
     .unwrap();
-    writeln!(md, "|{}", "---|".repeat(5 + checkpoints.len())).unwrap();
+    writeln!(md, "|{}", "---|".repeat(6 + checkpoints.len())).unwrap();
     let m4f = m4f_instructions();
     for (mname, m) in [
         ("constant 1 rad/s", Motion::Constant),
         ("coning, Ω = 2π/√2", Motion::Coning),
     ] {
-        let rows: Vec<(&str, &str, Vec<f64>)> = vec![
+        let rows: Vec<(&str, &str, (Vec<f64>, f64))> = vec![
             ("Hold", "Plain", run(m, &checkpoints, Hold, Hold, Plain)),
             (
                 "Hold",
@@ -162,7 +195,7 @@ fn main() {
                 ),
             ),
         ];
-        for (input, acc, errs) in rows {
+        for (input, acc, (errs, ns)) in rows {
             write!(md, "| {mname} | {input} | {acc} |").unwrap();
             for e in &errs {
                 write!(md, " {e:.2e} |").unwrap();
@@ -176,16 +209,18 @@ fn main() {
                 .iter()
                 .find(|(a, i, _)| a == acc && i.eq_ignore_ascii_case(input))
                 .map_or("not measured".to_string(), |(_, _, n)| format!("{n:.1}"));
-            writeln!(md, " {slope:.2} | {cost} |").unwrap();
+            writeln!(md, " {slope:.2} | {cost} | {ns:.1} |").unwrap();
         }
     }
     writeln!(
         md,
-        "\nOwn error: the angle between the f32 attitude and an f64 propagator (Kahan) fed the same f32 \
+        "\nOwn error: the angle between the f32 attitude and an f64 propagator (plain accumulation) fed the same f32 \
          samples and the same f32 periods (`FixedPeriod`), so the only difference is the f32 arithmetic; \
          10⁸ steps and the error against physical time are in the lab's long-horizon study \
          ([report](report/README.md#long-horizon-in-f32-own-error-and-error-against-physical-time)). \
-         Instructions: `firmware/bench-m4f.csv` (`python3 firmware/figures.py`, QEMU `-icount`; docs/firmware.md).\n\n\
+         Instructions: `firmware/bench-m4f.csv` (`python3 firmware/figures.py`, QEMU `-icount`; docs/firmware.md). \
+         Host: the f32 propagator alone over 10⁶ precomputed samples, the least of five runs, on the machine \
+         that ran this command.\n\n\
          Which accumulator: `Plain` while its own error stays below what the gyro itself contributes over \
          the run (its drift grows linearly with the steps: read the rows above at your horizon); \
          `FloatFloat` for long runs in f32, where it keeps the attitude at its output's rounding at several \

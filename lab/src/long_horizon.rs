@@ -617,9 +617,11 @@ pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
              −2Ω sin²(α/2) rounds the same way every sample, a biased floor that grows linearly), and an f32 run can \
              land closer to the physical motion than its own shadow only by its arithmetic error cancelling part \
              of that floor, which is why the own error is the measure of the arithmetic. FloatFloat's own error \
-             on the same stream is {:.2e} rad (exponent {:.2}), and {:.2e} rad on the constant rate: about the \
-             rounding of an f32 attitude itself (half an ulp of each component, up to {:.1e} rad), flat over the \
-             decades; its physical-time error is {:.2e} rad, the shadow's. ",
+             on the same stream is {:.2e} rad (exponent {:.2}), and {:.2e} rad on the constant rate: below the \
+             rounding of an f32 attitude itself (half an ulp of each component, up to {:.1e} rad) at every \
+             checkpoint; its physical-time error is {:.2e} rad, the shadow's. The Runge–Kutta schemes and Cf4 \
+             hand FloatFloat a rounded right factor (no low part), so their own error still grows linearly \
+             (the \"scheme\" rows). ",
             p.own_error_at_end,
             p.own_growth,
             p.physical_error_at_end,
