@@ -36,13 +36,10 @@ fn rate(m: Motion, k: u64) -> Vec3<f32> {
     Vec3::new(w.x as f32, w.y as f32, w.z as f32)
 }
 
-fn run<I32, I64, A>(
-    motion: Motion,
-    checkpoints: &[u64],
-    i32m: I32,
-    i64m: I64,
-    acc: A,
-) -> (Vec<f64>, f64)
+/// Own errors at the checkpoints (rad) and host ns per step.
+type Measured = (Vec<f64>, f64);
+
+fn run<I32, I64, A>(motion: Motion, checkpoints: &[u64], i32m: I32, i64m: I64, acc: A) -> Measured
 where
     I32: InputModel<f32, Sample = GyroSample<f32>>,
     I64: InputModel<f64, Sample = GyroSample<f64>>,
@@ -139,7 +136,7 @@ fn main() {
         ("constant 1 rad/s", Motion::Constant),
         ("coning, Ω = 2π/√2", Motion::Coning),
     ] {
-        let rows: Vec<(&str, &str, (Vec<f64>, f64))> = vec![
+        let rows: Vec<(&str, &str, Measured)> = vec![
             ("Hold", "Plain", run(m, &checkpoints, Hold, Hold, Plain)),
             (
                 "Hold",

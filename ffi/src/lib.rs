@@ -559,7 +559,8 @@ pub unsafe extern "C" fn quatprop_set_count_scale_dps(
     // SAFETY: forwarded contract.
     unsafe {
         with(s, |st| {
-            let scale = CountScale::full_scale_dps(full_scale_dps).map_err(|_| Fail::BadArgument)?;
+            let scale =
+                CountScale::full_scale_dps(full_scale_dps).map_err(|_| Fail::BadArgument)?;
             st.front.scale = Some(scale);
             Ok(())
         })
