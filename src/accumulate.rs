@@ -17,7 +17,7 @@
 //!   over 10⁸ steps where `Plain` and `Kahan` drift linearly (docs/report, "Long horizon"), for several
 //!   times the instructions of a plain step (docs/own_error.md), and 16 bytes of state (f32).
 
-use crate::exact::{product_by_vector, two_sum};
+use crate::exact::{product_by_vector, two_sum_quat};
 use crate::input::Segment;
 use crate::scheme::Scheme;
 use crate::{Quat, Real};
@@ -110,8 +110,9 @@ impl<T: Real> Accumulator<T> for Kahan<T> {
 /// What is exact: `q ⊗ (0, h⃗)` for the vector part `h⃗` of `hi` (12 TwoProducts, Dot2 summation), the
 /// addition to `q` (TwoSum), the rounding of the rotation vector's final sum and product (the exponential
 /// maps' `lo`). What rounds, far below f32's ulp of the attitude: the low-order terms `q ⊗ lo + l ⊗ hi`,
-/// and `q` times the scalar part of `hi`, which only scales the attitude (the stabilizer's business). [`Propagator::attitude`](crate::Propagator::attitude) is `q`, the
-/// high part.
+/// and `q` times the scalar part of `hi`, which only scales the attitude (the stabilizer's business).
+/// [`Propagator::attitude`](crate::Propagator::attitude) is `q`, the high part. Rates are body-frame rad/s,
+/// steps in s, as everywhere (`q' = ½ q ⊗ (0, ω)`, Hamilton product).
 ///
 /// ```
 /// use quatprop::accumulate::FloatFloat;
@@ -169,15 +170,6 @@ impl<T: Real> FloatFloat<T> {
         self.low = lo;
         hi
     }
-}
-
-#[inline(always)]
-fn two_sum_quat<T: Real>(a: Quat<T>, b: Quat<T>) -> (Quat<T>, Quat<T>) {
-    let (w, ew) = two_sum(a.w, b.w);
-    let (x, ex) = two_sum(a.x, b.x);
-    let (y, ey) = two_sum(a.y, b.y);
-    let (z, ez) = two_sum(a.z, b.z);
-    (Quat::new(w, x, y, z), Quat::new(ew, ex, ey, ez))
 }
 
 impl<T: Real> Accumulator<T> for FloatFloat<T> {

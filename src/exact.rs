@@ -30,11 +30,7 @@ fn split<T: Real>(a: T) -> (T, T) {
 /// `(p, e)` with `p = fl(a·b)` and `a·b = p + e` exactly (Dekker's TwoProduct, 17 flops).
 #[inline(always)]
 pub(crate) fn two_product<T: Real>(a: T, b: T) -> (T, T) {
-    let p = a * b;
-    let (ah, al) = split(a);
-    let (bh, bl) = split(b);
-    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    (p, e)
+    product_of_splits(a, split(a), b, split(b))
 }
 
 /// `(s, e)` with `s = fl(a + b)` and `a + b = s + e` exactly, per component.
@@ -44,6 +40,14 @@ pub(crate) fn two_sum_vec<T: Real>(a: Vec3<T>, b: Vec3<T>) -> (Vec3<T>, Vec3<T>)
     let (y, ey) = two_sum(a.y, b.y);
     let (z, ez) = two_sum(a.z, b.z);
     (Vec3::new(x, y, z), Vec3::new(ex, ey, ez))
+}
+
+/// `(s, e)` with `s = fl(a + b)` and `a + b = s + e` exactly, per component.
+#[inline(always)]
+pub(crate) fn two_sum_quat<T: Real>(a: Quat<T>, b: Quat<T>) -> (Quat<T>, Quat<T>) {
+    let (w, ew) = two_sum(a.w, b.w);
+    let (v, ev) = two_sum_vec(a.vector(), b.vector());
+    (Quat::from_parts(w, v), Quat::from_parts(ew, ev))
 }
 
 /// `(p, e)` with `p = fl(v·k)` and `v·k = p + e` exactly, per component (k split once).
