@@ -375,4 +375,14 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     pub fn stabilizer(&self) -> Z {
         self.stabilizer
     }
+
+    /// The accumulator, with what it carries beside the attitude (e.g. [`FloatFloat::low`]: the
+    /// attitude is then `attitude() + accumulator().low()`).
+    ///
+    /// [`FloatFloat::low`]: crate::accumulate::FloatFloat::low
+    #[inline]
+    #[must_use]
+    pub fn accumulator(&self) -> A {
+        self.accumulator
+    }
 }

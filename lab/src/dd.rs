@@ -139,6 +139,10 @@ impl ConePhase {
         let frac = Dd::from(k as f64).mul(self.per_sample).rem(Dd::from(1.0));
         TWO_PI.mul(frac).to_f64()
     }
+    /// Ω·h, the phase advance over one sample interval (rad).
+    pub fn per_sample_angle(&self) -> f64 {
+        TWO_PI.mul(self.per_sample).to_f64()
+    }
 }
 
 #[cfg(test)]

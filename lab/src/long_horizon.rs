@@ -1,10 +1,11 @@
 //! Long horizon in f32: **own error** and **error against physical time**, separately, to 10⁸ steps at
 //! 1 kHz (28 h of flight; `--long` 10⁹, `--quick` 10⁶).
 //!
-//! Every f32 run has an f64 shadow: the same scheme, input model and stabilizer in f64 (Kahan-compensated,
-//! so its own round-off stays far below what is measured), fed **the same f32 samples and the same f32
-//! `dt`s** (their f64 values). The f32 run's *own error* is its angle to that shadow: what f32 arithmetic
-//! adds, nothing else. Its *error against physical time* is its angle to the exact motion at t = k·0.001 s
+//! Every f32 run has an f64 shadow: the same scheme, input model and stabilizer in f64 (with the
+//! float-float accumulator, so its own round-off stays far below what is measured), fed **the same f32
+//! samples and the same f32 `dt`s** (their f64 values). The f32 run's *own error* is its angle to that
+//! shadow: what f32 arithmetic adds, nothing else. For `FloatFloat` the state is `q + l`; its own error is
+//! measured on the read-out `q` (what a user reads) and on `q + l` (what the state holds) separately. Its *error against physical time* is its angle to the exact motion at t = k·0.001 s
 //! (double-double reference, `crate::dd`), which also holds the samples' rounding, the time base and the
 //! scheme's truncation; the shadow's own error against physical time is printed beside it (the floor
 //! that no f32 arithmetic can go below).
@@ -13,7 +14,9 @@
 //! dt = f32(0.001) is the time-base study's subject). Motions: a constant 1 rad/s about (0.36, −0.48, 0.80)
 //! (the reference is the exact rotation of the f32 sample's rate), and coning α = 0.3 rad at Ω = 2π/√2
 //! rad/s, a frequency incommensurate with the sample rate (a cone period that divides the sample rate
-//! repeats the same roundings every period and locks the error: numerics notes).
+//! repeats the same roundings every period and locks the error: numerics notes). Input: rates (Hold,
+//! Linear, History) or delta angles (the f32 rounding of the exact integral of the rate over each
+//! interval, `DeltaAngles` with the `OnePlusPrevious` coning correction).
 
 use crate::configs::scheme_name;
 use crate::dd;
@@ -22,10 +25,11 @@ use crate::table::{self, cell, sci, Csv, Table};
 use crate::Ctx;
 use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use quatprop::frontend::FixedPeriod;
-use quatprop::input::{History, Hold, InputModel, Linear};
+use quatprop::input::coning::OnePlusPrevious;
+use quatprop::input::{DeltaAngles, History, Hold, InputModel, Linear};
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Stabilizer, StabilizerKind};
-use quatprop::{GyroSample, Propagator, Quat, Real, Vec3};
+use quatprop::{DeltaAngle, GyroSample, Propagator, Quat, Real, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -64,10 +68,29 @@ impl Motion {
             }
         }
     }
-    /// The exact attitude at sample k (`w32`: the constant rate's f32 sample).
-    fn attitude(self, k: u64, phase: &dd::ConePhase, w32: Vec3<f64>) -> Quat<f64> {
+    /// The angle increment ∫ω dt (rad) over the sample interval that ends at sample k ≥ 1, in f64 from
+    /// closed forms (no quadrature error; the phase in double-double).
+    fn increment(self, k: u64, phase: &dd::ConePhase) -> Vec3<f64> {
         match self {
-            Motion::Constant => dd::constant_rate_attitude(w32, dd::time(k, 1000)),
+            Motion::Constant => AXIS * 1e-3,
+            Motion::Coning => {
+                // ω = Ω·(−A sin φ, A cos φ, −2 sin²(α/2)), A = sin α, φ = Ωt: over [φ₀, φ₁],
+                // ∫ωx = A(cos φ₁ − cos φ₀) = −2A sin φ_m sin(δ/2), ∫ωy = 2A cos φ_m sin(δ/2), ∫ωz = −2 sin²(α/2)·δ.
+                let delta = phase.per_sample_angle();
+                let mid = phase.at(k) - 0.5 * delta;
+                let (s, c) = mid.sin_cos();
+                let a = ALPHA.sin();
+                let sh = (0.5 * delta).sin();
+                let s2 = (0.5 * ALPHA).sin();
+                Vec3::new(-2.0 * a * s * sh, 2.0 * a * c * sh, -2.0 * s2 * s2 * delta)
+            }
+        }
+    }
+    /// The exact attitude at sample k. The constant motion is the exact rotation of the f32 sample the
+    /// stream carries: `constant` = (the f32 rate, per second) or (the f32 increment, per sample).
+    fn attitude(self, k: u64, phase: &dd::ConePhase, constant: (Vec3<f64>, u32)) -> Quat<f64> {
+        match self {
+            Motion::Constant => dd::constant_rate_attitude(constant.0, dd::time(k, constant.1)),
             Motion::Coning => {
                 let (s, c) = phase.at(k).sin_cos();
                 let (sa, ca) = (0.5 * ALPHA).sin_cos();
@@ -102,15 +125,18 @@ pub enum In {
     Hold,
     Linear,
     History,
+    /// Delta angles with the `OnePlusPrevious` coning correction.
+    Delta,
 }
 
 impl In {
-    pub const ALL: [In; 3] = [In::Hold, In::Linear, In::History];
+    pub const ALL: [In; 4] = [In::Hold, In::Linear, In::History, In::Delta];
     pub fn name(self) -> &'static str {
         match self {
             In::Hold => "Hold",
             In::Linear => "Linear",
             In::History => "History",
+            In::Delta => "DeltaAngles(OnePlusPrevious)",
         }
     }
 }
@@ -153,8 +179,12 @@ pub struct PointRow {
     pub motion: String,
     pub configuration: String,
     pub steps: u64,
-    /// Angle between the f32 state and its f64 shadow (same f32 samples, same f32 dts) (rad).
+    /// Angle between the f32 attitude (the read-out `q`) and its f64 shadow (same f32 samples, same
+    /// f32 dts) (rad).
     pub own_error_rad: f64,
+    /// Angle between the f32 state and the shadow (rad): `q + l` (exact in f64) for FloatFloat, `q` for
+    /// the others.
+    pub state_own_error_rad: f64,
     /// Angle between the f32 state and the exact motion at t = steps·0.001 s (rad).
     pub physical_error_rad: f64,
     /// Angle between the f64 shadow and the exact motion (rad): the floor of the samples and scheme.
@@ -179,6 +209,8 @@ pub struct SummaryRow {
     pub own_error_at_end: f64,
     /// Least-squares slope of log(own error) against log(steps) over the last two decades.
     pub own_growth: f64,
+    /// The state's own error (`q + l` for FloatFloat) at the end.
+    pub state_own_error_at_end: f64,
     pub physical_error_at_end_over_100: f64,
     pub physical_error_at_end_over_10: f64,
     pub physical_error_at_end: f64,
@@ -205,6 +237,7 @@ impl Table for SummaryRow {
             &format!("own {b}"),
             &format!("own {c}"),
             "own growth",
+            &format!("state (q + l) own {c}"),
             &format!("physical-time error {a}"),
             &format!("physical {b}"),
             &format!("physical {c}"),
@@ -214,7 +247,7 @@ impl Table for SummaryRow {
         ]);
         for r in rows {
             t += &format!(
-                "| {} | {} | {} | {} | {} | {} | {:.2} | {} | {} | {} | {:.2} | {} | {} |\n",
+                "| {} | {} | {} | {} | {} | {} | {:.2} | {} | {} | {} | {} | {:.2} | {} | {} |\n",
                 r.group,
                 cell(&r.motion),
                 cell(&r.configuration),
@@ -222,6 +255,7 @@ impl Table for SummaryRow {
                 sci(r.own_error_at_end_over_10, 2),
                 sci(r.own_error_at_end, 2),
                 r.own_growth,
+                sci(r.state_own_error_at_end, 2),
                 sci(r.physical_error_at_end_over_100, 2),
                 sci(r.physical_error_at_end_over_10, 2),
                 sci(r.physical_error_at_end, 2),
@@ -254,22 +288,59 @@ fn angle(a: Quat<f64>, b: Quat<f64>) -> f64 {
 }
 
 /// The input models as the library's types.
-trait LongInput<T: Real>: InputModel<T, Sample = GyroSample<T>> {
+trait LongInput<T: Real>: InputModel<T> {
+    /// Samples are angle increments (rad), not rates (rad/s).
+    const DELTA: bool = false;
     fn fresh() -> Self;
+    fn sample(v: Vec3<T>) -> Self::Sample;
 }
 impl<T: Real> LongInput<T> for Hold {
     fn fresh() -> Self {
         Hold
+    }
+    fn sample(v: Vec3<T>) -> GyroSample<T> {
+        GyroSample::new(v)
     }
 }
 impl<T: Real> LongInput<T> for Linear<T> {
     fn fresh() -> Self {
         Linear::new()
     }
+    fn sample(v: Vec3<T>) -> GyroSample<T> {
+        GyroSample::new(v)
+    }
 }
 impl<T: Real> LongInput<T> for History<T> {
     fn fresh() -> Self {
         History::new()
+    }
+    fn sample(v: Vec3<T>) -> GyroSample<T> {
+        GyroSample::new(v)
+    }
+}
+impl<T: Real> LongInput<T> for DeltaAngles<T, OnePlusPrevious> {
+    const DELTA: bool = true;
+    fn fresh() -> Self {
+        DeltaAngles::new(OnePlusPrevious)
+    }
+    fn sample(v: Vec3<T>) -> DeltaAngle<T> {
+        DeltaAngle::new(v)
+    }
+}
+
+/// What an accumulator's state holds, in f64 (exact): `q + l` for FloatFloat, `q` for the others.
+trait State: Accumulator<f32> {
+    fn state(&self, q: Quat<f32>) -> Quat<f64> {
+        q.to_f64()
+    }
+}
+impl State for Plain {}
+impl State for Kahan<f32> {}
+impl State for FloatFloat<f32> {
+    fn state(&self, q: Quat<f32>) -> Quat<f64> {
+        let l = self.low().to_f64();
+        let q = q.to_f64();
+        Quat::new(q.w + l.w, q.x + l.x, q.y + l.y, q.z + l.z)
     }
 }
 
@@ -287,11 +358,11 @@ where
     Z: Stabilizer,
     I32: LongInput<f32>,
     I64: LongInput<f64>,
-    A: Accumulator<f32>,
+    A: State,
 {
     let motion = r.motion;
     let phase = dd::ConePhase::over_sqrt2(1000);
-    let q0 = motion.attitude(0, &phase, Vec3::<f32>::from_f64(AXIS).to_f64());
+    let q0 = motion.attitude(0, &phase, (AXIS, 1));
     let mut p32 = Propagator::new(Quat::<f32>::from_f64(q0), s, I32::fresh(), z)
         .expect("valid configuration")
         .with_accumulator(acc);
@@ -299,15 +370,28 @@ where
     // The shadow starts where the f32 state starts (its rounded q0), so only the steps differ.
     let mut p64 = Propagator::new(q0_32, s, I64::fresh(), z)
         .expect("valid configuration")
-        .with_accumulator(Kahan::new());
+        .with_accumulator(FloatFloat::new());
     let mut period = FixedPeriod::<f32>::new(1e-3).expect("valid period");
-    let w_of = |k: u64| Vec3::<f32>::from_f64(motion.rate(k, &phase));
-    // The sample at t = 0 starts the stream (no interval before it; Hold keeps nothing of it).
-    let w = w_of(0);
-    p32.start(GyroSample::new(w)).expect("finite sample");
-    p64.start(GyroSample::new(w.to_f64()))
-        .expect("finite sample");
-    let w32_const = w_of(0).to_f64();
+    // Sample k: the rate at t_k, or the increment over (t_{k−1}, t_k].
+    let w_of = |k: u64| {
+        Vec3::<f32>::from_f64(if I32::DELTA {
+            motion.increment(k, &phase)
+        } else {
+            motion.rate(k, &phase)
+        })
+    };
+    // A rate stream starts with the sample at t = 0 (no interval before it; Hold keeps nothing of it).
+    // An increment stream has nothing at t = 0.
+    if !I32::DELTA {
+        let w = w_of(0);
+        p32.start(I32::sample(w)).expect("finite sample");
+        p64.start(I64::sample(w.to_f64())).expect("finite sample");
+    }
+    let constant = if I32::DELTA {
+        (w_of(1).to_f64(), 1)
+    } else {
+        (w_of(0).to_f64(), 1000)
+    };
     let mut out = Vec::new();
     let mut k = 0u64;
     let label = r.label();
@@ -316,19 +400,21 @@ where
             k += 1;
             let w = w_of(k);
             let dt = period.next_dt();
-            let _ = p32.push(GyroSample::new(w), dt);
-            let _ = p64.push(GyroSample::new(w.to_f64()), dt as f64);
+            let _ = p32.push(I32::sample(w), dt);
+            let _ = p64.push(I64::sample(w.to_f64()), dt as f64);
             if k.is_multiple_of(1_000_000) {
                 bar.inc(1);
             }
         }
-        let exact = motion.attitude(k, &phase, w32_const);
+        let exact = motion.attitude(k, &phase, constant);
         let (q32, q64) = (p32.attitude().to_f64(), p64.attitude());
+        let state = p32.accumulator().state(p32.attitude());
         out.push(PointRow {
             motion: motion.name().into(),
             configuration: label.clone(),
             steps: k,
             own_error_rad: angle(q32, q64),
+            state_own_error_rad: angle(state, q64),
             physical_error_rad: angle(q32, exact),
             f64_physical_error_rad: angle(q64, exact),
             abs_n: p32.norm_error().abs() as f64,
@@ -347,6 +433,13 @@ fn run_one(r: &Run, total: u64, bar: &indicatif::ProgressBar) -> Vec<PointRow> {
                 In::History => {
                     pair::<_, _, History<f32>, History<f64>, _>(r, $s, $z, $a, total, bar)
                 }
+                In::Delta => pair::<
+                    _,
+                    _,
+                    DeltaAngles<f32, OnePlusPrevious>,
+                    DeltaAngles<f64, OnePlusPrevious>,
+                    _,
+                >(r, $s, $z, $a, total, bar),
             }
         };
     }
@@ -463,6 +556,7 @@ fn summary(r: &Run, pts: &[PointRow]) -> SummaryRow {
         own_error_at_end_over_10: at(end / 10, |p| p.own_error_rad),
         own_error_at_end: at(end, |p| p.own_error_rad),
         own_growth: slope(&own),
+        state_own_error_at_end: at(end, |p| p.state_own_error_rad),
         physical_error_at_end_over_100: at(end / 100, |p| p.physical_error_rad),
         physical_error_at_end_over_10: at(end / 10, |p| p.physical_error_rad),
         physical_error_at_end: at(end, |p| p.physical_error_rad),

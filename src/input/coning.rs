@@ -19,6 +19,7 @@
 //! The drift coefficients are checked against propagation on the exact coning motion in `tests/coning.rs`.
 
 use crate::dispatch::dispatch;
+use crate::exact::two_sum_vec;
 use crate::{Real, Vec3};
 
 /// A coning correction: the update's rotation vector from its angle increments.
@@ -34,6 +35,19 @@ pub trait ConingCorrection: Copy {
         previous: Option<Vec3<T>>,
         increments: &[Vec3<T>],
     ) -> Vec3<T>;
+
+    /// [`ConingCorrection::rotation_vector`] as an unevaluated sum `hi + lo` (rad): `hi` is its value bit for
+    /// bit, `lo` the rounding of the increments' sum and of adding the correction term (TwoSum), which
+    /// [`crate::accumulate::FloatFloat`] carries. By default no low part; every correction here
+    /// keeps it.
+    #[inline(always)]
+    fn rotation_vector_split<T: Real>(
+        &self,
+        previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> (Vec3<T>, Vec3<T>) {
+        (self.rotation_vector(previous, increments), Vec3::ZERO)
+    }
 }
 
 fn sum<T: Real>(increments: &[Vec3<T>]) -> Vec3<T> {
@@ -44,9 +58,29 @@ fn sum<T: Real>(increments: &[Vec3<T>]) -> Vec3<T> {
     s
 }
 
+/// [`sum`] with its rounding error: the same high part, bit for bit, and the sum of every addition's error
+/// (TwoSum; the errors' own sum rounds far below the high part's ulp).
+#[inline(always)]
+fn sum_split<T: Real>(increments: &[Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
+    let mut s = Vec3::ZERO;
+    let mut e = Vec3::ZERO;
+    for d in increments {
+        let (t, r) = two_sum_vec(s, *d);
+        s = t;
+        e += r;
+    }
+    (s, e)
+}
+
 /// `φ = ΣΔθ + (Σ_{i<N} kᵢ Δθᵢ) × Δθ_N`: the compressed N-sample form with coefficients `k` (over `den`).
 /// Panic-free for any slice (empty: zero).
 fn compressed<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
+    sum(increments) + compressed_term(increments, k, den)
+}
+
+/// The cross-product term of [`compressed`], `(Σ_{i<N} kᵢ Δθᵢ) × Δθ_N` (zero for an empty slice).
+#[inline(always)]
+fn compressed_term<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
     let Some((last, rest)) = increments.split_last() else {
         return Vec3::ZERO;
     };
@@ -54,7 +88,15 @@ fn compressed<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
     for (d, &ki) in rest.iter().zip(k) {
         weighted += *d * T::from_f64(ki / den);
     }
-    sum(increments) + weighted.cross(*last)
+    weighted.cross(*last)
+}
+
+/// [`compressed`] as `hi + lo` ([`ConingCorrection::rotation_vector_split`]).
+#[inline(always)]
+fn compressed_split<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> (Vec3<T>, Vec3<T>) {
+    let (s, e) = sum_split(increments);
+    let (hi, r) = two_sum_vec(s, compressed_term(increments, k, den));
+    (hi, e + r)
 }
 
 /// No correction: `φ = Δθ`, one increment per update (the coning drift of the table above).
@@ -76,6 +118,14 @@ impl ConingCorrection for Uncorrected {
         increments: &[Vec3<T>],
     ) -> Vec3<T> {
         sum(increments)
+    }
+    #[inline]
+    fn rotation_vector_split<T: Real>(
+        &self,
+        _previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> (Vec3<T>, Vec3<T>) {
+        sum_split(increments)
     }
 }
 
@@ -106,6 +156,20 @@ impl ConingCorrection for OnePlusPrevious {
             None => d,
         }
     }
+    #[inline]
+    fn rotation_vector_split<T: Real>(
+        &self,
+        previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> (Vec3<T>, Vec3<T>) {
+        let Some(&d) = increments.first() else {
+            return (Vec3::ZERO, Vec3::ZERO);
+        };
+        match previous {
+            Some(p) => two_sum_vec(d, p.cross(d) * T::from_f64(1.0 / 12.0)),
+            None => (d, Vec3::ZERO),
+        }
+    }
 }
 
 macro_rules! n_sample {
@@ -125,6 +189,10 @@ macro_rules! n_sample {
             #[inline]
             fn rotation_vector<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> Vec3<T> {
                 compressed(increments, &[$($k),*], $den)
+            }
+            #[inline]
+            fn rotation_vector_split<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
+                compressed_split(increments, &[$($k),*], $den)
             }
         }
     };
@@ -216,5 +284,13 @@ impl ConingCorrection for ConingKind {
         increments: &[Vec3<T>],
     ) -> Vec3<T> {
         each!(self, c => c.rotation_vector(previous, increments))
+    }
+    #[inline]
+    fn rotation_vector_split<T: Real>(
+        &self,
+        previous: Option<Vec3<T>>,
+        increments: &[Vec3<T>],
+    ) -> (Vec3<T>, Vec3<T>) {
+        each!(self, c => c.rotation_vector_split(previous, increments))
     }
 }

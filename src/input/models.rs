@@ -460,13 +460,13 @@ impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
             return Ok((next, None));
         }
         let increments = gather(&self.pending, k, d);
-        let phi = self
+        let (phi, low) = self
             .correction
-            .rotation_vector(self.previous, increments.get(..k + 1).unwrap_or(&[]));
+            .rotation_vector_split(self.previous, increments.get(..k + 1).unwrap_or(&[]));
         next.count = 0;
         next.time = T::ZERO;
         next.previous = Some(d);
-        Ok((next, Some((RotationVector { phi, h: time }, time))))
+        Ok((next, Some((RotationVector { phi, low, h: time }, time))))
     }
     #[inline(always)]
     fn start(&self, sample: &DeltaAngle<T>) -> Result<Self, Error> {

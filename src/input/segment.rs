@@ -375,6 +375,8 @@ impl<T: Real> Segment<T> for GaussRates<T> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RotationVector<T> {
     pub(crate) phi: Vec3<T>,
+    /// The rounding of `phi` (TwoSum over the increments and the correction term): `φ = phi + low`.
+    pub(crate) low: Vec3<T>,
     pub(crate) h: T,
 }
 
@@ -390,6 +392,11 @@ impl<T: Real> Segment<T> for RotationVector<T> {
     #[inline(always)]
     fn half_angle(&self, _hh: T) -> Vec3<T> {
         self.phi * T::HALF
+    }
+    /// Halving is exact: the low part is the rotation vector's own.
+    #[inline(always)]
+    fn half_angle_split(&self, _hh: T) -> (Vec3<T>, Vec3<T>) {
+        (self.phi * T::HALF, self.low * T::HALF)
     }
     #[inline(always)]
     fn max_step_angle_squared(&self, _h: T) -> T {
