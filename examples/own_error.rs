@@ -132,6 +132,9 @@ fn main() {
     .unwrap();
     writeln!(md, "|{}", "---|".repeat(6 + checkpoints.len())).unwrap();
     let m4f = m4f_instructions();
+    // Constant-rate own error at the last checkpoint and its maximum over the checkpoints, per accumulator
+    // (Hold): what the horizon table below is computed from.
+    let mut constant_rate: Vec<(&str, f64, f64)> = Vec::new();
     for (mname, m) in [
         ("constant 1 rad/s", Motion::Constant),
         ("coning, Ω = 2π/√2", Motion::Coning),
@@ -193,6 +196,10 @@ fn main() {
             ),
         ];
         for (input, acc, (errs, ns)) in rows {
+            if matches!(m, Motion::Constant) && input == "Hold" {
+                let max = errs.iter().copied().fold(0.0, f64::max);
+                constant_rate.push((acc, *errs.last().unwrap(), max));
+            }
             write!(md, "| {mname} | {input} | {acc} |").unwrap();
             for e in &errs {
                 write!(md, " {e:.2e} |").unwrap();
@@ -218,16 +225,81 @@ fn main() {
          Instructions: `firmware/bench-m4f.csv` (`python3 firmware/figures.py`, QEMU `-icount`; docs/firmware.md). \
          Host: the f32 propagator alone over 10⁶ precomputed samples, the least of five runs, on the machine \
          that ran this command.\n\n\
-         Which accumulator: `Plain` while its own error stays below what the gyro itself contributes over \
-         the run (its drift grows linearly with the steps: read the rows above at your horizon); \
-         `FloatFloat` for long runs in f32, where it keeps the attitude at its output's rounding at several \
-         times the step's instructions; `Kahan` sits between them."
+         ## Which accumulator, for which horizon\n\n\
+         Pick the cheapest accumulator whose own error stays below what the gyro itself contributes over the run. \
+         The gyro's share is at least its angle random walk, `ARW·√t`; the f32 arithmetic's share is the own \
+         error above, which for `Plain` and `Kahan` grows linearly (a drift `r` rad/s, here from the constant \
+         1 rad/s rows at {last:.0e} steps, and roughly proportional to the mean rotation rate), so it stays below \
+         the noise until `t* = (ARW / r)²`. `FloatFloat`'s own error does not grow: it stays at the f32 output's \
+         rounding (its largest value over the checkpoints, `L`), below the noise from `t₀ = (L / ARW)²` on. \
+         ARW values are typical of each grade (assumed, not measured here; the consumer MEMS figure is the \
+         ICM-42688-P datasheet's 2.8 m°/s/√Hz).\n\n\
+         | accumulator | own error at 1 rad/s | consumer MEMS, 0.17 °/√h | industrial MEMS, 0.05 °/√h | tactical, 0.01 °/√h | navigation, 0.001 °/√h |\n\
+         |---|---|---|---|---|---|",
+        last = checkpoints.last().copied().unwrap_or(0) as f64,
+    )
+    .unwrap();
+    let grades_deg_per_root_hour: [f64; 4] = [0.17, 0.05, 0.01, 0.001];
+    let last_s = checkpoints.last().copied().unwrap_or(1) as f64 * 1e-3;
+    for (acc, end, max) in &constant_rate {
+        let growing = *acc != "FloatFloat";
+        if growing {
+            write!(md, "| {acc} | drift {:.2e} rad/s |", end / last_s).unwrap();
+        } else {
+            write!(md, "| {acc} | level {max:.2e} rad |").unwrap();
+        }
+        for g in grades_deg_per_root_hour {
+            // °/√h → rad/√s.
+            let arw = g.to_radians() / 60.0;
+            if growing {
+                let t = (arw / (end / last_s)).powi(2);
+                write!(md, " below the noise for {} |", duration(t)).unwrap();
+            } else {
+                let t = (max / arw).powi(2);
+                write!(md, " below the noise after {} |", duration(t)).unwrap();
+            }
+        }
+        writeln!(md).unwrap();
+    }
+    let drift = |a: &str| {
+        constant_rate
+            .iter()
+            .find(|r| r.0 == a)
+            .map_or(f64::NAN, |r| r.1)
+    };
+    let ratio = drift("Plain") / drift("Kahan");
+    writeln!(
+        md,
+        "\nSo: `Plain` (the quick start's) while the run is shorter than its `t*` for your gyro (for consumer \
+         MEMS, longer than an attitude is flown on gyro alone); `Kahan` cuts the drift by {kahan:.1}× (`t*` \
+         {kahan2:.0}× longer) for a few instructions; `FloatFloat` beyond those horizons (tactical and \
+         navigation-grade gyros, hours-long runs), at its instruction cost above. The drift also scales with the \
+         rate: `t*` at 2 rad/s is a quarter of the table's.",
+        kahan = ratio,
+        kahan2 = ratio * ratio,
     )
     .unwrap();
     writeln!(md, "\nRun time {:.0} s.", start.elapsed().as_secs_f64()).unwrap();
     print!("{md}");
     if let Some(dir) = out_dir {
         std::fs::write(format!("{dir}/own_error.md"), md).unwrap();
+    }
+}
+
+/// A duration (s) in the unit a reader would say it in.
+fn duration(t: f64) -> String {
+    if t < 1e-3 {
+        format!("{:.0} µs", t * 1e6)
+    } else if t < 1.0 {
+        format!("{:.0} ms", t * 1e3)
+    } else if t < 120.0 {
+        format!("{t:.1} s")
+    } else if t < 7200.0 {
+        format!("{:.0} min", t / 60.0)
+    } else if t < 3.0 * 86400.0 {
+        format!("{:.1} h", t / 3600.0)
+    } else {
+        format!("{:.0} days", t / 86400.0)
     }
 }
 

@@ -282,7 +282,7 @@ impl<T: Real> Quat<T> {
         // a non-finite result), so no general argument reduction is linked (src/trig.rs). An overflowed
         // |v|² (f32: |v| > 1.8e19, f64: 1.3e154) gives x = ∞ and a NaN result the same way;
         // `from_rotation_vector` takes those angles through libm.
-        let x = x2.sqrt();
+        let x = Float::sqrt_step(x2);
         let half = Float::sin_step(x * T::HALF);
         // cos x − 1 = −2 sin²(x/2).
         Self::from_parts(-(T::TWO * half * half), v * (Float::sin_step(x) / x))

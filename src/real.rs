@@ -29,6 +29,9 @@ pub(crate) mod sealed {
         /// Sine on the step path (the exponential map's large-angle branch): `f32`:
         /// [`crate::trig::sin_f32`] (`0 ≤ x ≤ 8192`, NaN beyond; no `f64` code linked); `f64`: libm.
         fn sin_step(self) -> Self;
+        /// Square root on the step path (the exponential map's large-angle branch): `f32`:
+        /// [`crate::trig::sqrt_f32`] (no table, no libm); `f64`: libm.
+        fn sqrt_step(self) -> Self;
         /// `sqrt(self² + y²)` without undue overflow or underflow.
         fn hypot(self, y: Self) -> Self;
         /// The larger of two numbers by one comparison (`other` if either is NaN). For validated, finite
@@ -102,7 +105,7 @@ pub trait Real:
 }
 
 macro_rules! impl_real {
-    ($t:ty, $sqrt:path, $sin:path, $sin_step:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
+    ($t:ty, $sqrt:path, $sqrt_step:path, $sin:path, $sin_step:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
         impl sealed::Float for $t {
             const EXP_TAYLOR_MAX_SQ: Self = $taylor;
             const HARDWARE_FLOAT: bool = $hw;
@@ -113,6 +116,10 @@ macro_rules! impl_real {
             #[inline(always)]
             fn sin_step(self) -> Self {
                 $sin_step(self)
+            }
+            #[inline(always)]
+            fn sqrt_step(self) -> Self {
+                $sqrt_step(self)
             }
             #[inline(always)]
             fn hypot(self, y: Self) -> Self {
@@ -192,6 +199,7 @@ macro_rules! impl_real {
 impl_real!(
     f32,
     libm::sqrtf,
+    crate::trig::sqrt_f32,
     libm::sinf,
     crate::trig::sin_f32,
     libm::cosf,
@@ -210,6 +218,7 @@ impl_real!(
 );
 impl_real!(
     f64,
+    libm::sqrt,
     libm::sqrt,
     libm::sin,
     libm::sin,

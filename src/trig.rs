@@ -1,4 +1,5 @@
-//! The sine of the exponential map's large-angle branch in `f32`, in `f32` arithmetic only.
+//! The sine and the square root of the exponential map's large-angle branch in `f32`, in `f32` arithmetic
+//! only ([`sin_f32`], [`sqrt_f32`]).
 //!
 //! libm's `sinf` reduces any argument (Payne–Hanek, for up to 2¹²⁸ rad) and evaluates its kernels in
 //! `f64`: on a Cortex-M4F that links software `f64` arithmetic and tables, about 8 KiB of flash for a
@@ -15,7 +16,7 @@
 //! `sin x` is small the reduction's absolute error, not the result's ulp, is what is left; against the
 //! attitude's unit norm both are far below its ulp, 6e-8).
 
-use crate::exact::two_sum;
+use crate::exact::{two_product, two_sum};
 
 /// Largest argument (rad) of [`sin_f32`]; beyond it the result is NaN.
 pub(crate) const SIN_F32_MAX: f32 = 8192.0;
@@ -75,11 +76,44 @@ pub(crate) fn sin_f32(x: f32) -> f32 {
     }
 }
 
+/// `√x` correctly rounded for `2⁻¹²⁰ ≤ x ≤ 2¹²⁶` (tested exhaustively over the step path's range, see
+/// below); `0` for `0`, `∞` for `∞`, NaN for a negative, subnormal or NaN `x` (not exact in the few binades
+/// at either end of the normal range: `x/2` or the square's error lose bits, or the square overflows).
+///
+/// libm's `sqrtf` is a bit-by-bit software root with a 256-byte table (about 480 bytes of flash on a
+/// Cortex-M4F, whose `vsqrt.f32` libm does not use and `forbid(unsafe_code)` cannot reach). This one: an
+/// estimate of `1/√x` from the exponent and the leading mantissa bits (the bit pattern halved and
+/// subtracted from a constant; 3.5% relative error), three Newton steps `y ← y(3/2 − x y²/2)` (3.5% →
+/// 2e-3 → 5e-6 → f32's rounding), `s = x·y` (within a few ulp), and one Newton step on the root with the
+/// exact residual `x − s²` (TwoProduct): `s + (x − s²)·y/2`. With two steps on `1/√x` instead of three,
+/// `s` is 5e-6 off and the last step leaves an error large enough to round some near-ties the wrong way.
+/// Every step scales exactly with `x → 4x` (the estimate halves, the rest is homogeneous), so what holds
+/// over two binades holds everywhere in range.
+#[inline(never)]
+pub(crate) fn sqrt_f32(x: f32) -> f32 {
+    if !(f32::MIN_POSITIVE..=f32::MAX).contains(&x) {
+        return if x == 0.0 || x == f32::INFINITY {
+            x
+        } else {
+            f32::NAN
+        };
+    }
+    let h = 0.5 * x;
+    let mut y = f32::from_bits(0x5f37_5a86 - (x.to_bits() >> 1));
+    y = y * (1.5 - h * y * y);
+    y = y * (1.5 - h * y * y);
+    y = y * (1.5 - h * y * y);
+    let s = x * y;
+    // x − p is exact (Sterbenz: p is within a few ulp of x); e is the square's rounding.
+    let (p, e) = two_product(s, s);
+    s + ((x - p) - e) * (0.5 * y)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     extern crate std;
-    use std::eprintln;
+    use std::{eprintln, vec::Vec};
 
     fn ulp_f32(v: f64) -> f64 {
         // The spacing of f32 at |v| (normal range).
@@ -108,6 +142,36 @@ mod tests {
         eprintln!("sin_f32: max {max_ulp:.3} ulp (at {at}), max abs {max_abs:.3e}");
         assert!(max_ulp <= SIN_F32_MAX_ULP, "{max_ulp} ulp at {at}");
         assert!(max_abs <= SIN_F32_MAX_ABS, "{max_abs:e}");
+    }
+
+    /// Every f32 in [0.01, 2²⁸] (the large-angle branch's |v|² from the Taylor threshold up to where
+    /// `sin_f32` refuses), and the ends of the range: correctly rounded. (The f64 root rounded to f32 is
+    /// the correctly rounded f32 root: 53 ≥ 2·24 + 2 makes the double rounding innocuous.)
+    #[test]
+    fn sqrt_f32_is_correctly_rounded_for_every_argument_in_range() {
+        let (lo, hi) = (0.01f32.to_bits(), 2f32.powi(28).to_bits());
+        let extremes = [
+            2f32.powi(-120),
+            1.5 * 2f32.powi(-120),
+            2f32.powi(126),
+            1.99 * 2f32.powi(125),
+        ];
+        let wrong: Vec<f32> = (lo..=hi)
+            .map(f32::from_bits)
+            .chain(extremes)
+            .filter(|&x| sqrt_f32(x) != libm::sqrt(f64::from(x)) as f32)
+            .take(5)
+            .collect();
+        assert!(wrong.is_empty(), "not correctly rounded at {wrong:?}");
+    }
+
+    #[test]
+    fn sqrt_f32_handles_what_is_not_a_normal_positive_number() {
+        assert_eq!(sqrt_f32(0.0), 0.0);
+        assert_eq!(sqrt_f32(f32::INFINITY), f32::INFINITY);
+        for x in [-1.0, -f32::MIN_POSITIVE, f32::MIN_POSITIVE / 2.0, f32::NAN, f32::NEG_INFINITY] {
+            assert!(sqrt_f32(x).is_nan(), "{x}");
+        }
     }
 
     #[test]
