@@ -1,15 +1,25 @@
-//! The flash floor of a real use: one scheme + `History` + `FirstOrder` in f32, no defmt, no formatting.
-//! The scheme is Rk4 unless a `scheme-*` feature picks another (for the per-scheme size table).
-//! Exits 0 if a 1 rad/s yaw over 1000 steps of 1 ms lands at 1 rad (quaternion components within 1e-4).
+//! The flash floor of a real use: one scheme + one input model + `FirstOrder` in f32, no defmt, no
+//! formatting. The scheme is Rk4 unless a `scheme-*` feature picks another, the input model `History`
+//! unless `input-hold` or `input-linear` does (for the flash table). Exits 0 if a 1 rad/s yaw over 1000
+//! steps of 1 ms lands at 1 rad (quaternion components within 1e-4). With `baseline`: the same loop and
+//! exit without quatprop (exits 0), what the flash table subtracts to give the library's share.
 #![no_std]
 #![no_main]
+// The baseline names none of the configuration below.
+#![cfg_attr(feature = "baseline", allow(unused_imports, dead_code))]
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
-use quatprop::input::History;
 use quatprop::stabilize::FirstOrder;
-use quatprop::{scheme, GyroSample, Propagator, Quat, Vec3};
+use quatprop::{input, scheme, GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::exit::exit;
+
+#[cfg(feature = "input-hold")]
+type I = input::Hold;
+#[cfg(feature = "input-linear")]
+type I = input::Linear<f32>;
+#[cfg(not(any(feature = "input-hold", feature = "input-linear")))]
+type I = input::History<f32>;
 
 #[cfg(feature = "scheme-euler")]
 type S = scheme::Euler;
@@ -36,14 +46,21 @@ type S = scheme::Cf4;
 )))]
 type S = scheme::Rk4;
 
+#[cfg(feature = "baseline")]
 #[entry]
 fn main() -> ! {
-    let ok = match Propagator::new(
-        Quat::<f32>::IDENTITY,
-        S::default(),
-        History::new(),
-        FirstOrder,
-    ) {
+    let mut sum = 0.0_f32;
+    for _ in 0..=1000 {
+        let w = black_box(Vec3::new(0.0_f32, 0.0, 1.0));
+        sum += black_box(w.z) * black_box(1.0e-3);
+    }
+    exit(black_box(sum) > 0.0)
+}
+
+#[cfg(not(feature = "baseline"))]
+#[entry]
+fn main() -> ! {
+    let ok = match Propagator::new(Quat::<f32>::IDENTITY, S::default(), I::default(), FirstOrder) {
         Ok(mut p) => {
             let mut refused = false;
             // 1001 samples: the first only starts the history.
