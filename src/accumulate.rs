@@ -24,6 +24,10 @@ use crate::{Quat, Real};
 
 /// Adds increments to the attitude.
 pub trait Accumulator<T: Real>: Copy {
+    /// `true` if [`Accumulator::advance`] uses the step's low parts ([`Segment::half_angle_split`]): the
+    /// propagator then asks the input model for them ([`crate::input::InputModel::accept_split`]).
+    const CARRIES_LOW_PARTS: bool = false;
+
     /// Returns `q + d`, updating any internal compensation.
     fn add(&mut self, q: Quat<T>, d: Quat<T>) -> Quat<T>;
 
@@ -173,6 +177,7 @@ impl<T: Real> FloatFloat<T> {
 }
 
 impl<T: Real> Accumulator<T> for FloatFloat<T> {
+    const CARRIES_LOW_PARTS: bool = true;
     #[inline(always)]
     fn add(&mut self, q: Quat<T>, d: Quat<T>) -> Quat<T> {
         self.add_split(q, d, Quat::ZERO)

@@ -156,7 +156,11 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
                 Error::NonFiniteStep
             });
         }
-        let (input, step) = self.input.accept(&sample, dt)?;
+        let (input, step) = if A::CARRIES_LOW_PARTS {
+            self.input.accept_split(&sample, dt)?
+        } else {
+            self.input.accept(&sample, dt)?
+        };
         if let Some((segment, h)) = step {
             self.scheme.check(&segment, h)?;
             // Compute into locals (the accumulator is Copy), commit only on success.

@@ -6,7 +6,7 @@ use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
 use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
 use quatprop::{Error, GyroSample, Propagator, Quat};
 
-/// Samples converted at a time; a longer FIFO read is taken in batches of this size.
+/// Samples converted per batch of a FIFO read.
 const BATCH: usize = 8;
 
 /// One attitude, fed from a gyro's FIFO: raw counts → body axes → bias removed → integrated.

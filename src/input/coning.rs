@@ -75,7 +75,14 @@ fn sum_split<T: Real>(increments: &[Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
 /// `φ = ΣΔθ + (Σ_{i<N} kᵢ Δθᵢ) × Δθ_N`: the compressed N-sample form with coefficients `k` (over `den`).
 /// Panic-free for any slice (empty: zero).
 fn compressed<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> Vec3<T> {
-    sum(increments) + compressed_term(increments, k, den)
+    let Some((last, rest)) = increments.split_last() else {
+        return Vec3::ZERO;
+    };
+    let mut weighted = Vec3::ZERO;
+    for (d, &ki) in rest.iter().zip(k) {
+        weighted += *d * T::from_f64(ki / den);
+    }
+    sum(increments) + weighted.cross(*last)
 }
 
 /// The cross-product term of [`compressed`], `(Σ_{i<N} kᵢ Δθᵢ) × Δθ_N` (zero for an empty slice).
@@ -119,7 +126,7 @@ impl ConingCorrection for Uncorrected {
     ) -> Vec3<T> {
         sum(increments)
     }
-    #[inline]
+    #[inline(always)]
     fn rotation_vector_split<T: Real>(
         &self,
         _previous: Option<Vec3<T>>,
@@ -156,7 +163,7 @@ impl ConingCorrection for OnePlusPrevious {
             None => d,
         }
     }
-    #[inline]
+    #[inline(always)]
     fn rotation_vector_split<T: Real>(
         &self,
         previous: Option<Vec3<T>>,
@@ -190,7 +197,7 @@ macro_rules! n_sample {
             fn rotation_vector<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> Vec3<T> {
                 compressed(increments, &[$($k),*], $den)
             }
-            #[inline]
+            #[inline(always)]
             fn rotation_vector_split<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
                 compressed_split(increments, &[$($k),*], $den)
             }
@@ -285,7 +292,7 @@ impl ConingCorrection for ConingKind {
     ) -> Vec3<T> {
         each!(self, c => c.rotation_vector(previous, increments))
     }
-    #[inline]
+    #[inline(always)]
     fn rotation_vector_split<T: Real>(
         &self,
         previous: Option<Vec3<T>>,

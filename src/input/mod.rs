@@ -92,6 +92,24 @@ pub trait InputModel<T: Real>: Copy {
         dt: T,
     ) -> Result<(Self, Option<(Self::Segment, T)>), Error>;
 
+    /// [`InputModel::accept`] for an accumulator that carries low parts
+    /// ([`crate::accumulate::Accumulator::CARRIES_LOW_PARTS`]): a model whose segment keeps a rounding that
+    /// the plain path drops computes it here (`DeltaAngles`: the rounding of the rotation vector's sum,
+    /// [`coning::ConingCorrection::rotation_vector_split`]), so the plain path does not pay for it. By
+    /// default `accept`.
+    ///
+    /// # Errors
+    /// As [`InputModel::accept`].
+    #[allow(clippy::type_complexity)]
+    #[inline(always)]
+    fn accept_split(
+        &self,
+        sample: &Self::Sample,
+        dt: T,
+    ) -> Result<(Self, Option<(Self::Segment, T)>), Error> {
+        self.accept(sample, dt)
+    }
+
     /// Takes the first sample of a stream, which sets its time origin (there is no `dt` before it): a
     /// restarted model that keeps the sample as the start of its next step where it can (`Linear`,
     /// `History`, `TwiceRate`); models that need the sample's interval (`Hold`, `GaussPoints`,

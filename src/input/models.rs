@@ -434,11 +434,12 @@ impl<T: Real, C: ConingCorrection> DeltaAngles<T, C> {
     }
 }
 
-impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
-    type Sample = DeltaAngle<T>;
-    type Segment = RotationVector<T>;
+impl<T: Real, C: ConingCorrection> DeltaAngles<T, C> {
+    /// [`InputModel::accept`] (`SPLIT` false) and [`InputModel::accept_split`] (`SPLIT` true: the rotation
+    /// vector's rounding kept in the segment's low part).
+    #[allow(clippy::type_complexity)]
     #[inline(always)]
-    fn accept(
+    fn accept_with<const SPLIT: bool>(
         &self,
         sample: &DeltaAngle<T>,
         dt: T,
@@ -460,13 +461,41 @@ impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
             return Ok((next, None));
         }
         let increments = gather(&self.pending, k, d);
-        let (phi, low) = self
-            .correction
-            .rotation_vector_split(self.previous, increments.get(..k + 1).unwrap_or(&[]));
+        let increments = increments.get(..k + 1).unwrap_or(&[]);
+        let (phi, low) = if SPLIT {
+            self.correction
+                .rotation_vector_split(self.previous, increments)
+        } else {
+            (
+                self.correction.rotation_vector(self.previous, increments),
+                Vec3::ZERO,
+            )
+        };
         next.count = 0;
         next.time = T::ZERO;
         next.previous = Some(d);
         Ok((next, Some((RotationVector { phi, low, h: time }, time))))
+    }
+}
+
+impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
+    type Sample = DeltaAngle<T>;
+    type Segment = RotationVector<T>;
+    #[inline(always)]
+    fn accept(
+        &self,
+        sample: &DeltaAngle<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
+        self.accept_with::<false>(sample, dt)
+    }
+    #[inline(always)]
+    fn accept_split(
+        &self,
+        sample: &DeltaAngle<T>,
+        dt: T,
+    ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
+        self.accept_with::<true>(sample, dt)
     }
     #[inline(always)]
     fn start(&self, sample: &DeltaAngle<T>) -> Result<Self, Error> {

@@ -375,9 +375,10 @@ impl<T: Real> Segment<T> for GaussRates<T> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RotationVector<T> {
     pub(crate) phi: Vec3<T>,
-    /// The rounding of `phi` (TwoSum over the increments and the correction term): `φ = phi + low`.
-    pub(crate) low: Vec3<T>,
     pub(crate) h: T,
+    /// The rounding of `phi` (TwoSum over the increments and the correction term): `φ = phi + low`; zero
+    /// unless the accumulator carries low parts ([`crate::input::InputModel::accept_split`]).
+    pub(crate) low: Vec3<T>,
 }
 
 impl<T: Real> Segment<T> for RotationVector<T> {
