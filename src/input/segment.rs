@@ -308,24 +308,16 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
             HistoryRate::Newton { ends, .. } => Some(ends[0].cross(ends[1])),
         }
     }
+    /// The two samples that bound the step: every earlier sample bounded a step of its own and was checked
+    /// there (the start-up sample, which closes no step, is `w_k` of the next), at a spacing within
+    /// [`crate::input::History::SPACING_TOLERANCE`] of this one for the constant weights.
     #[inline(always)]
     fn max_step_angle_squared(&self, h: T) -> T {
-        let (w, n) = match self {
-            HistoryRate::Uniform { w, .. } => (*w, 4),
-            // The interpolant between the two end samples; the earlier samples were checked in their
-            // own steps.
-            HistoryRate::Newton { ends, .. } => ([ends[0], ends[1], ends[1], ends[1]], 2),
+        let [w2, w3] = match self {
+            HistoryRate::Uniform { w, .. } => [w[2], w[3]],
+            HistoryRate::Newton { ends, .. } => *ends,
         };
-        // Unused leading entries are zero, so the maximum over all four is the maximum over the samples.
-        let mut m = T::ZERO;
-        for w in w.iter().take(n.max(2)) {
-            m = m.max((*w * h).norm_squared());
-        }
-        if n == 4 {
-            m
-        } else {
-            m.max((w[0] * h).norm_squared())
-        }
+        (w2 * h).norm_squared().max((w3 * h).norm_squared())
     }
 }
 
