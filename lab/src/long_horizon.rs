@@ -747,7 +747,11 @@ pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
          rate: 1 rad/s about (0.36, −0.48, 0.80) from the identity, reference the exact rotation of the f32 \
          sample's rate. Coning: α = 0.3 rad at Ω = 2π/√2 rad/s, incommensurate with 1 kHz (a commensurate \
          cone repeats its roundings every period and locks the error), f32 samples of the exact rate, \
-         reference the exact motion. Growth exponent: slope of log error against log steps over the last two \
+         reference the exact motion. Delta angles: the f32 rounding of the exact increment over each interval, \
+         `DeltaAngles` with `OnePlusPrevious` (the constant rate's reference is then the exact rotation of the \
+         f32 increment, so its floor is the shadow's arithmetic alone). For FloatFloat the state is `q + l`: \
+         \"state own error\" is the angle of `q + l` (exact in f64) to the shadow, the read-out `q` adds its \
+         own rounding (the other accumulators' state is `q`). Growth exponent: slope of log error against log steps over the last two \
          decades (1 a biased drift, ½ a random walk). No Baumgarte row: since quatprop 0.2 it is a right-hand-side \
          option of the Runge–Kutta schemes, not a post-step stabilizer.\n\n{headline}\n\n{table}"
     )
