@@ -169,7 +169,13 @@ mod tests {
     fn sqrt_f32_handles_what_is_not_a_normal_positive_number() {
         assert_eq!(sqrt_f32(0.0), 0.0);
         assert_eq!(sqrt_f32(f32::INFINITY), f32::INFINITY);
-        for x in [-1.0, -f32::MIN_POSITIVE, f32::MIN_POSITIVE / 2.0, f32::NAN, f32::NEG_INFINITY] {
+        for x in [
+            -1.0,
+            -f32::MIN_POSITIVE,
+            f32::MIN_POSITIVE / 2.0,
+            f32::NAN,
+            f32::NEG_INFINITY,
+        ] {
             assert!(sqrt_f32(x).is_nan(), "{x}");
         }
     }

@@ -60,7 +60,12 @@ fn main() -> ! {
 #[cfg(not(feature = "baseline"))]
 #[entry]
 fn main() -> ! {
-    let ok = match Propagator::new(Quat::<f32>::IDENTITY, S::default(), I::default(), FirstOrder) {
+    let ok = match Propagator::new(
+        Quat::<f32>::IDENTITY,
+        S::default(),
+        I::default(),
+        FirstOrder,
+    ) {
         Ok(mut p) => {
             let mut refused = false;
             // 1001 samples: the first only starts the history.
