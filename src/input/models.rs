@@ -134,7 +134,8 @@ pub struct History<T> {
     /// The three most recent samples, oldest first (the last `count` are valid).
     w: [Vec3<T>; 3],
     count: u8,
-    /// The spacings (s) of the kept samples: `[t_{k−1} − t_{k−2}, t_k − t_{k−1}]`.
+    /// The spacings (s) of the kept samples: `[t_{k−1} − t_{k−2}, t_k − t_{k−1}]`; the first is zero
+    /// unless all three are kept (so that it is never close to a `dt`).
     dt: [T; 2],
 }
 
@@ -189,6 +190,21 @@ impl<T: Real> InputModel<T> for History<T> {
     ) -> Result<(Self, Option<(HistoryRate<T>, T)>), Error> {
         let w = finite_rate(sample)?;
         let [f, e] = self.dt;
+        let [a, b, c] = self.w;
+        // The steady state first: a full history (`f` is zero with fewer samples, never close to `dt`) at
+        // an equal spacing (which is no gap).
+        if close(e, dt, Self::SPACING_TOLERANCE) && close(f, dt, Self::SPACING_TOLERANCE) {
+            let next = Self {
+                w: [b, c, w],
+                count: 3,
+                dt: [e, dt],
+            };
+            let segment = HistoryRate::Uniform {
+                w: [a, b, c, w],
+                count: 4,
+            };
+            return Ok((next, Some((segment, dt))));
+        }
         let gap = T::from_f64(Self::GAP_RATIO);
         // A gap: keep only the last sample (the step becomes linear over its true length).
         let kept = if self.count > 1 && (dt > e * gap || dt * gap < e) {
@@ -196,7 +212,6 @@ impl<T: Real> InputModel<T> for History<T> {
         } else {
             self.count
         };
-        let [a, b, c] = self.w;
         let z = Vec3::ZERO;
         let segment = match kept {
             0 => None,
@@ -224,10 +239,18 @@ impl<T: Real> InputModel<T> for History<T> {
                 },
             ),
         };
-        let next = Self {
-            w: [b, c, w],
-            count: if kept < 3 { kept + 1 } else { 3 },
-            dt: [e, dt],
+        let next = if kept < 2 {
+            Self {
+                w: [b, c, w],
+                count: kept + 1,
+                dt: [T::ZERO, dt],
+            }
+        } else {
+            Self {
+                w: [b, c, w],
+                count: 3,
+                dt: [e, dt],
+            }
         };
         Ok((next, segment.map(|s| (s, dt))))
     }
@@ -243,6 +266,7 @@ impl<T: Real> InputModel<T> for History<T> {
     #[inline(always)]
     fn restart(&mut self) {
         self.count = 0;
+        self.dt[0] = T::ZERO;
     }
 }
 
