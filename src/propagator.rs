@@ -40,7 +40,9 @@ pub struct Propagator<T, S, I, Z, A = Plain> {
     stabilizer: Z,
     accumulator: A,
     steps: u64,
-    corrections: u64,
+    /// Steps the stabilizer left uncorrected (`corrections = steps − uncorrected`): a stabilizer that
+    /// corrects every step then costs no counter update.
+    uncorrected: u64,
     saturated: u64,
     pending: u32,
 }
@@ -60,7 +62,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer> Propagator<T, S, I,
             stabilizer,
             accumulator: Plain,
             steps: 0,
-            corrections: 0,
+            uncorrected: 0,
             saturated: 0,
             pending: 0,
         })
@@ -123,7 +125,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             stabilizer: self.stabilizer,
             accumulator,
             steps: self.steps,
-            corrections: self.corrections,
+            uncorrected: self.uncorrected,
             saturated: self.saturated,
             pending: self.pending,
         }
@@ -178,16 +180,14 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             self.accumulator = acc;
             self.steps = self.steps.wrapping_add(1);
             if corrected {
-                self.corrections = self.corrections.wrapping_add(1);
                 self.pending = 0;
             } else {
+                self.uncorrected = self.uncorrected.wrapping_add(1);
                 self.pending = pending;
             }
         }
         self.input = input;
-        self.saturated = self
-            .saturated
-            .wrapping_add(u64::from(sample.is_saturated()));
+        self.count_saturated(&sample);
         Ok(())
     }
 
@@ -209,9 +209,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// ```
     pub fn start(&mut self, sample: I::Sample) -> Result<(), Error> {
         self.input = self.input.start(&sample)?;
-        self.saturated = self
-            .saturated
-            .wrapping_add(u64::from(sample.is_saturated()));
+        self.count_saturated(&sample);
         Ok(())
     }
 
@@ -297,6 +295,14 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         Ok(samples.len())
     }
 
+    /// Counts an accepted sample if it is saturated (a branch, not an add: most samples are not).
+    #[inline(always)]
+    fn count_saturated(&mut self, sample: &I::Sample) {
+        if sample.is_saturated() {
+            self.saturated = self.saturated.wrapping_add(1);
+        }
+    }
+
     /// Forgets the samples the input model keeps between steps (after a gap in the data: the next sample
     /// starts the model afresh). The attitude and counters stay.
     pub fn restart_input(&mut self) {
@@ -349,7 +355,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     #[inline]
     #[must_use]
     pub fn corrections(&self) -> u64 {
-        self.corrections
+        self.steps.wrapping_sub(self.uncorrected)
     }
 
     /// Saturated samples accepted so far (on every input path).

@@ -106,8 +106,8 @@ impl<T: Real> InputModel<T> for Linear<T> {
 /// the newest sample). The recommended input for a rate gyro.
 ///
 /// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
-/// third a quadratic one (third). Equally spaced samples (to within [`History::SPACING_TOLERANCE`]) use
-/// constant weights; jittered ones the cubic through the samples at their true times (each `dt` as
+/// third a quadratic one (third). Equally spaced samples (each spacing within
+/// [`History::SPACING_TOLERANCE`] of the next) use constant weights; jittered ones the cubic through the samples at their true times (each `dt` as
 /// given), still fourth order. A gap — a `dt` more than [`History::GAP_RATIO`] times the previous one, or
 /// less than its inverse (a refused or dropped sample, a restarted sensor) — restarts the history at the
 /// last sample, so that interval is integrated linearly over its true length and the order builds up
@@ -131,19 +131,28 @@ impl<T: Real> InputModel<T> for Linear<T> {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct History<T> {
-    /// The three most recent samples, oldest first (the last `count` are valid).
-    w: [Vec3<T>; 3],
+    /// The newest sample ω_k (valid when `count ≥ 1`).
+    w: Vec3<T>,
+    /// The differences of the kept samples, `[ω_{k−1} − ω_{k−2}, ω_k − ω_{k−1}]` (the last `count − 1`
+    /// are valid). Kept rather than the samples themselves: each is computed once, when its later
+    /// sample arrives, and reused by the next two steps (bit for bit the difference they would form).
+    d: [Vec3<T>; 2],
     count: u8,
-    /// The spacings (s) of the kept samples: `[t_{k−1} − t_{k−2}, t_k − t_{k−1}]`; the first is zero
-    /// unless all three are kept (so that it is never close to a `dt`).
+    /// Three samples are kept and their two spacings are within [`History::SPACING_TOLERANCE`] of each
+    /// other: a next `dt` within it of the later one makes a step with the constant weights (one test
+    /// in the steady state instead of two).
+    uniform: bool,
+    /// The spacings (s) of the kept samples: `[t_{k−1} − t_{k−2}, t_k − t_{k−1}]` (the first is zero
+    /// unless all three are kept).
     dt: [T; 2],
 }
 
 impl<T: Real> History<T> {
-    /// The relative difference of two spacings (2⁻²⁰) within which samples count as equally spaced and
-    /// the constant weights are used. An exact time base ([`crate::frontend::FixedPeriod`]) varies an f32
-    /// `dt` by one ulp (2⁻²³ relative), inside it; treating spacings that differ by δ as equal errs by
-    /// about `δ·h²·|ω'|` per step, below f32 rounding at this tolerance.
+    /// The relative difference of two consecutive spacings (2⁻²⁰, relative to the later one) within which
+    /// samples count as equally spaced and the constant weights are used. An exact time base
+    /// ([`crate::frontend::FixedPeriod`]) varies an f32 `dt` by one ulp (2⁻²³ relative), inside it;
+    /// treating the step's three spacings as equal when they differ by δ (at most about twice the
+    /// tolerance) errs by about `δ·h²·|ω'|` per step, below f32 rounding at this tolerance.
     pub const SPACING_TOLERANCE: f64 = 1.0 / 1_048_576.0;
 
     /// A `dt` more than this times the previous one (or less than its inverse) is a gap: the history
@@ -154,8 +163,10 @@ impl<T: Real> History<T> {
     #[must_use]
     pub fn new() -> Self {
         Self {
-            w: [Vec3::ZERO; 3],
+            w: Vec3::ZERO,
+            d: [Vec3::ZERO; 2],
             count: 0,
+            uniform: false,
             dt: [T::ZERO; 2],
         }
     }
@@ -190,20 +201,28 @@ impl<T: Real> InputModel<T> for History<T> {
     ) -> Result<(Self, Option<(HistoryRate<T>, T)>), Error> {
         let w = finite_rate(sample)?;
         let [f, e] = self.dt;
-        let [a, b, c] = self.w;
-        // The steady state first: a full history (`f` is zero with fewer samples, never close to `dt`) at
-        // an equal spacing (which is no gap).
-        if close(e, dt, Self::SPACING_TOLERANCE) && close(f, dt, Self::SPACING_TOLERANCE) {
-            let next = Self {
-                w: [b, c, w],
-                count: 3,
-                dt: [e, dt],
-            };
+        let c = self.w;
+        let [d1, d2] = self.d;
+        let d3 = w - c;
+        // Whatever the step, the history moves on by one sample (the count below says how many are
+        // valid).
+        let shifted = |count, uniform, dt| Self {
+            w,
+            d: [d2, d3],
+            count,
+            uniform,
+            dt,
+        };
+        let close_to_last = close(e, dt, Self::SPACING_TOLERANCE);
+        // The steady state first: a full, equally spaced history and a `dt` equal to its spacing (which
+        // is no gap).
+        if self.uniform && close_to_last {
             let segment = HistoryRate::Uniform {
-                w: [a, b, c, w],
+                ends: [c, w],
+                d: [d1, d2],
                 count: 4,
             };
-            return Ok((next, Some((segment, dt))));
+            return Ok((shifted(3, true, [e, dt]), Some((segment, dt))));
         }
         let gap = T::from_f64(Self::GAP_RATIO);
         // A gap: keep only the last sample (the step becomes linear over its true length).
@@ -216,41 +235,29 @@ impl<T: Real> InputModel<T> for History<T> {
         let segment = match kept {
             0 => None,
             1 => Some(HistoryRate::Uniform {
-                w: [z, z, c, w],
+                ends: [c, w],
+                d: [z, z],
                 count: 2,
             }),
-            2 => Some(if close(e, dt, Self::SPACING_TOLERANCE) {
+            2 => Some(if close_to_last {
                 HistoryRate::Uniform {
-                    w: [z, b, c, w],
+                    ends: [c, w],
+                    d: [z, d2],
                     count: 3,
                 }
             } else {
-                HistoryRate::newton([z, b, c, w], 3, e / dt, T::ONE)
+                HistoryRate::newton([c, w], [z, d2], 3, e / dt, T::ONE)
             }),
-            _ => Some(
-                if close(e, dt, Self::SPACING_TOLERANCE) && close(f, dt, Self::SPACING_TOLERANCE) {
-                    HistoryRate::Uniform {
-                        w: [a, b, c, w],
-                        count: 4,
-                    }
-                } else {
-                    let inv = T::ONE / dt;
-                    HistoryRate::newton([a, b, c, w], 4, e * inv, f * inv)
-                },
-            ),
+            // Three samples whose spacings are not all equal (equal ones took the steady state).
+            _ => Some({
+                let inv = T::ONE / dt;
+                HistoryRate::newton([c, w], [d1, d2], 4, e * inv, f * inv)
+            }),
         };
         let next = if kept < 2 {
-            Self {
-                w: [b, c, w],
-                count: kept + 1,
-                dt: [T::ZERO, dt],
-            }
+            shifted(kept + 1, false, [T::ZERO, dt])
         } else {
-            Self {
-                w: [b, c, w],
-                count: 3,
-                dt: [e, dt],
-            }
+            shifted(3, close_to_last, [e, dt])
         };
         Ok((next, segment.map(|s| (s, dt))))
     }
@@ -258,14 +265,17 @@ impl<T: Real> InputModel<T> for History<T> {
     fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
         let w = finite_rate(sample)?;
         Ok(Self {
-            w: [Vec3::ZERO, Vec3::ZERO, w],
+            w,
+            d: [Vec3::ZERO; 2],
             count: 1,
+            uniform: false,
             dt: [T::ZERO; 2],
         })
     }
     #[inline(always)]
     fn restart(&mut self) {
         self.count = 0;
+        self.uniform = false;
         self.dt[0] = T::ZERO;
     }
 }
@@ -597,7 +607,7 @@ mod tests {
         assert!(matches!(seg, HistoryRate::Uniform { count: 4, .. }));
         // The Newton form at equal spacing agrees with the constant weights to rounding.
         let w = [0.0, 0.01, 0.02, 0.03].map(|t| Vec3::new(0.0, 0.0, omega(t)));
-        let newton = HistoryRate::newton(w, 4, 1.0, 1.0);
+        let newton = HistoryRate::newton([w[2], w[3]], [w[1] - w[0], w[2] - w[1]], 4, 1.0, 1.0);
         let d = newton.half_angle(0.005).z - seg.half_angle(0.005).z;
         assert!(d.abs() < 1e-18, "{d:e}");
         // dt doubled (a dropped sample): the step is linear over the true interval.

@@ -126,18 +126,29 @@ impl<T: Real> Segment<T> for QuadraticRate<T> {
     }
 }
 
+/// `4Δ₂ − Δ₁`: the earlier samples' part of the cubic's mean rate over the step (`/24`) and of its rate
+/// at the middle (`/16`), computed once for both.
+#[inline(always)]
+fn earlier<T: Real>(d1: Vec3<T>, d2: Vec3<T>) -> Vec3<T> {
+    d2 * T::from_f64(4.0) - d1
+}
+
 /// ω from the sample history: the polynomial through the last 2, 3 or 4 samples
 /// ω_{k−2}, ω_{k−1}, ω_k, ω_{k+1} on the last interval `[t_k, t_{k+1}]`.
 ///
-/// `Uniform`: equally spaced samples, Lagrange weights as constants. `Newton`: samples at their true times
-/// (jittered timestamps), the Newton form `p(c) = ω_k + (ω_{k+1} − ω_k)c + d₂ c(c − 1) + d₃ c(c − 1)(c + r)`
-/// in units of the step, with the divided differences `d₂`, `d₃` and `r = (t_k − t_{k−1})/h`.
+/// `Uniform`: equally spaced samples, held as the interval's ends and the backward differences
+/// `Δ₁ = ω_{k−1} − ω_{k−2}`, `Δ₂ = ω_k − ω_{k−1}` (with `Δ₃ = ω_{k+1} − ω_k`), the weights constants.
+/// `Newton`: samples at their true times (jittered timestamps), the Newton form
+/// `p(c) = ω_k + (ω_{k+1} − ω_k)c + d₂ c(c − 1) + d₃ c(c − 1)(c + r)` in units of the step, with the
+/// divided differences `d₂`, `d₃` and `r = (t_k − t_{k−1})/h`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum HistoryRate<T> {
     /// Equally spaced samples.
     Uniform {
-        /// Samples at c = −2, −1, 0, 1 (oldest first); with fewer, the leading entries are zero.
-        w: [Vec3<T>; 4],
+        /// ω_k and ω_{k+1}.
+        ends: [Vec3<T>; 2],
+        /// `[Δ₁, Δ₂]`; the ones the count leaves out are unused.
+        d: [Vec3<T>; 2],
         /// 2, 3 or 4 samples.
         count: u8,
     },
@@ -155,22 +166,24 @@ pub enum HistoryRate<T> {
 }
 
 impl<T: Real> HistoryRate<T> {
-    /// The Newton form through samples `w` (oldest first, the last two ending the step) whose spacings
-    /// relative to the step are `r1 = (t_k − t_{k−1})/h` and `r2 = (t_{k−1} − t_{k−2})/h`.
+    /// The Newton form through the samples ending at `ends = [ω_k, ω_{k+1}]` with the backward differences
+    /// `d = [Δ₁, Δ₂]` before them, whose spacings relative to the step are `r1 = (t_k − t_{k−1})/h` and
+    /// `r2 = (t_{k−1} − t_{k−2})/h`.
     #[inline]
-    pub(crate) fn newton(w: [Vec3<T>; 4], count: u8, r1: T, r2: T) -> Self {
-        let [w0, w1, w2, w3] = w;
+    pub(crate) fn newton(ends: [Vec3<T>; 2], d: [Vec3<T>; 2], count: u8, r1: T, r2: T) -> Self {
+        let [w2, w3] = ends;
+        let [dd1, dd2] = d;
         let d1 = w3 - w2;
         let (d2, d3) = match count {
             4 => {
-                let d12 = (w2 - w1) * (T::ONE / r1);
-                let d01 = (w1 - w0) * (T::ONE / r2);
+                let d12 = dd2 * (T::ONE / r1);
+                let d01 = dd1 * (T::ONE / r2);
                 let d2 = (d1 - d12) * (T::ONE / (T::ONE + r1));
                 let d012 = (d12 - d01) * (T::ONE / (r1 + r2));
                 (d2, (d2 - d012) * (T::ONE / (T::ONE + r1 + r2)))
             }
             3 => {
-                let d12 = (w2 - w1) * (T::ONE / r1);
+                let d12 = dd2 * (T::ONE / r1);
                 ((d1 - d12) * (T::ONE / (T::ONE + r1)), Vec3::ZERO)
             }
             _ => (Vec3::ZERO, Vec3::ZERO),
@@ -183,35 +196,18 @@ impl<T: Real> HistoryRate<T> {
         }
     }
 
-    /// Lagrange weights at c for the equally spaced nodes (−2, −1, 0, 1; the unused ones zero).
+    /// The weights of `[Δ₁, Δ₂, Δ₃]` in `ω(c) = ω_k + Σ weight·Δ` for equally spaced samples (the
+    /// Newton form on the nodes 0, 1, −1, −2: `cΔ₃ + c(c−1)/2·(Δ₃ − Δ₂) + c(c−1)(c+1)/6·(Δ₃ − 2Δ₂ + Δ₁)`,
+    /// the terms the count allows).
     #[inline(always)]
-    fn weights(count: u8, c: f64) -> [f64; 4] {
+    fn weights(count: u8, c: f64) -> [f64; 3] {
+        let quadratic = c * (c - 1.0) / 2.0;
+        let cubic = c * (c - 1.0) * (c + 1.0) / 6.0;
         match count {
-            4 => [
-                -(c + 1.0) * c * (c - 1.0) / 6.0,
-                (c + 2.0) * c * (c - 1.0) / 2.0,
-                -(c + 2.0) * (c + 1.0) * (c - 1.0) / 2.0,
-                (c + 2.0) * (c + 1.0) * c / 6.0,
-            ],
-            3 => [
-                0.0,
-                c * (c - 1.0) / 2.0,
-                -(c + 1.0) * (c - 1.0),
-                (c + 1.0) * c / 2.0,
-            ],
-            _ => [0.0, 0.0, 1.0 - c, c],
+            4 => [cubic, -quadratic - 2.0 * cubic, c + quadratic + cubic],
+            3 => [0.0, -quadratic, c + quadratic],
+            _ => [0.0, 0.0, c],
         }
-    }
-
-    #[inline(always)]
-    fn combine(w: &[Vec3<T>; 4], k: [f64; 4]) -> Vec3<T> {
-        let mut s = Vec3::ZERO;
-        for (w, &ki) in w.iter().zip(&k) {
-            if ki != 0.0 {
-                s += *w * T::from_f64(ki);
-            }
-        }
-        s
     }
 }
 
@@ -219,13 +215,21 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
     #[inline(always)]
     fn rate_at(&self, c: f64) -> Vec3<T> {
         match self {
-            HistoryRate::Uniform { w, count } => {
+            HistoryRate::Uniform { ends, d, count } => {
+                let [w2, w3] = *ends;
                 if c == 0.0 {
-                    w[2]
+                    w2
                 } else if c == 1.0 {
-                    w[3]
+                    w3
                 } else {
-                    Self::combine(w, Self::weights(*count, c))
+                    let [d1, d2] = *d;
+                    let mut s = w2;
+                    for (d, k) in [d1, d2, w3 - w2].into_iter().zip(Self::weights(*count, c)) {
+                        if k != 0.0 {
+                            s += d * T::from_f64(k);
+                        }
+                    }
+                    s
                 }
             }
             HistoryRate::Newton { ends, d2, d3, r } => {
@@ -238,20 +242,18 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
     }
     /// `½∫ω dt` written on the differences of the samples, so a constant rate integrates exactly:
     /// cubic `ω_k + (9Δ₃ + 4Δ₂ − Δ₁)/24` (Adams–Moulton's (1, −5, 19, 9)/24), quadratic
-    /// `ω_k + (5Δ₃ + Δ₂)/12`, linear `(ω_k + ω_{k+1})/2`, with `Δ₃ = ω_{k+1} − ω_k`, `Δ₂ = ω_k − ω_{k−1}`,
-    /// `Δ₁ = ω_{k−1} − ω_{k−2}`. Newton form: `∫₀¹ p = ω_k + Δ₃/2 − d₂/6 − d₃(1/12 + r/6)`.
+    /// `ω_k + (5Δ₃ + Δ₂)/12`, linear `(ω_k + ω_{k+1})/2`. Newton form:
+    /// `∫₀¹ p = ω_k + Δ₃/2 − d₂/6 − d₃(1/12 + r/6)`.
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
         match self {
-            HistoryRate::Uniform { w, count } => {
-                let [w0, w1, w2, w3] = *w;
+            HistoryRate::Uniform { ends, d, count } => {
+                let [w2, w3] = *ends;
+                let [d1, d2] = *d;
                 let d3 = w3 - w2;
                 let mean = match count {
-                    4 => {
-                        let corr = d3 * T::from_f64(9.0) + (w2 - w1) * T::from_f64(4.0) - (w1 - w0);
-                        w2 + corr * T::from_f64(1.0 / 24.0)
-                    }
-                    3 => w2 + (d3 * T::from_f64(5.0) + (w2 - w1)) * T::from_f64(1.0 / 12.0),
+                    4 => w2 + (d3 * T::from_f64(9.0) + earlier(d1, d2)) * T::from_f64(1.0 / 24.0),
+                    3 => w2 + (d3 * T::from_f64(5.0) + d2) * T::from_f64(1.0 / 12.0),
                     _ => return (w2 + w3) * (hh * T::HALF),
                 };
                 mean * hh
@@ -269,15 +271,13 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
     #[inline(always)]
     fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
         let (w2, correction) = match self {
-            HistoryRate::Uniform { w, count } => {
-                let [w0, w1, w2, w3] = *w;
+            HistoryRate::Uniform { ends, d, count } => {
+                let [w2, w3] = *ends;
+                let [d1, d2] = *d;
                 let d3 = w3 - w2;
                 let correction = match count {
-                    4 => {
-                        (d3 * T::from_f64(9.0) + (w2 - w1) * T::from_f64(4.0) - (w1 - w0))
-                            * T::from_f64(1.0 / 24.0)
-                    }
-                    3 => (d3 * T::from_f64(5.0) + (w2 - w1)) * T::from_f64(1.0 / 12.0),
+                    4 => (d3 * T::from_f64(9.0) + earlier(d1, d2)) * T::from_f64(1.0 / 24.0),
+                    3 => (d3 * T::from_f64(5.0) + d2) * T::from_f64(1.0 / 12.0),
                     _ => return sum_times_split(w2, w3, hh * T::HALF),
                 };
                 (w2, correction)
@@ -295,15 +295,22 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
         let (p, pe) = two_product_vec(mean, hh);
         (p, pe + e * hh)
     }
-    /// `ω(½) × (ω_{k+1} − ω_k)`: uniform, ω(½) from the interpolant; Newton, ω(½) ≈ (ω_k + ω_{k+1})/2,
-    /// which makes it `ω_k × ω_{k+1}` (the O(h²) difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is
-    /// `ω'(½)` to O(h³).
+    /// `ω(½) × (ω_{k+1} − ω_k)`: uniform, ω(½) from the interpolant, `ω_k + (5/16)Δ₃ + (4Δ₂ − Δ₁)/16`
+    /// (cubic; quadratic `ω_k + (3/8)Δ₃ + (1/8)Δ₂`), whose `Δ₃` term drops out of the cross product with
+    /// `Δ₃` (and `4Δ₂ − Δ₁` is the mean rate's too); Newton, ω(½) ≈ (ω_k + ω_{k+1})/2, which makes it `ω_k × ω_{k+1}` (the O(h²)
+    /// difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is `ω'(½)` to O(h³).
     #[inline(always)]
     fn rate_commutator(&self) -> Option<Vec3<T>> {
         match self {
-            HistoryRate::Uniform { w, count } => {
-                let mid = Self::combine(w, Self::weights(*count, 0.5));
-                Some(mid.cross(w[3] - w[2]))
+            HistoryRate::Uniform { ends, d, count } => {
+                let [w2, w3] = *ends;
+                let [d1, d2] = *d;
+                let mid = match count {
+                    4 => w2 + earlier(d1, d2) * T::from_f64(1.0 / 16.0),
+                    3 => w2 + d2 * T::from_f64(0.125),
+                    _ => w2,
+                };
+                Some(mid.cross(w3 - w2))
             }
             HistoryRate::Newton { ends, .. } => Some(ends[0].cross(ends[1])),
         }
@@ -314,8 +321,7 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
     #[inline(always)]
     fn max_step_angle_squared(&self, h: T) -> T {
         let [w2, w3] = match self {
-            HistoryRate::Uniform { w, .. } => [w[2], w[3]],
-            HistoryRate::Newton { ends, .. } => *ends,
+            HistoryRate::Uniform { ends, .. } | HistoryRate::Newton { ends, .. } => *ends,
         };
         (w2 * h).norm_squared().max((w3 * h).norm_squared())
     }
