@@ -944,9 +944,10 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
         "### Full grid and Cortex-M4F cost: {}\n\n{counts} points (every scheme × stabilizer × input model × rate × \
          precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. The plot puts the f32 errors (bit-identical on the M4F) against \
          the instructions the firmware bench counted on the Cortex-M4F (`firmware/bench-m4f.csv`, from \
-         `python3 firmware/figures.py`) times the steps per second; the bench measures the hold, linear and mid \
-         inputs (the sample history costs about what mid does: both evaluate a polynomial rate model). Shown: \
-         Euler, Rk2, Rk4, ExpMap and Magnus4 with FirstOrder; the front is over every measured configuration.\n\n\
+         `python3 firmware/figures.py`) times the steps per second; the bench measures ExpMap, Magnus4, Cf4 and \
+         Rk4 with FirstOrder and Normalize on every input model (a configuration it does not measure has no \
+         point here). Shown: the schemes among Euler, Rk2, Rk4, ExpMap and Magnus4 with FirstOrder that it \
+         measured; the front is over every measured configuration.\n\n\
          ![m4f](wp_m4f_coning_f32.png)\n\n{table}",
         scene.name()
     )
