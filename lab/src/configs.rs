@@ -13,7 +13,7 @@
 //! its first error: nothing is dropped silently.
 
 use crate::peers;
-use quatprop::accumulate::{Accumulator, Kahan};
+use quatprop::accumulate::{Accumulator, FloatFloat, Kahan};
 use quatprop::input::{History, Hold, InputModel, Linear, TwiceRate};
 use quatprop::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
@@ -142,9 +142,20 @@ pub enum Config {
         method: SchemeKind,
         stab: Stab,
         input: Input,
-        compensated: bool,
+        accumulator: Acc,
     },
     Peer(Peer),
+}
+
+/// How a quatprop configuration adds its increments (`quatprop::accumulate`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Acc {
+    /// `Plain`: rounded addition.
+    Plain,
+    /// `Kahan`: compensated addition.
+    Kahan,
+    /// `FloatFloat`: a float-float state advanced by exact products.
+    FloatFloat,
 }
 
 impl Config {
@@ -153,7 +164,25 @@ impl Config {
             method,
             stab,
             input,
-            compensated: false,
+            accumulator: Acc::Plain,
+        }
+    }
+
+    /// The same quatprop configuration with another accumulator (a peer stays as it is).
+    pub const fn with(self, acc: Acc) -> Self {
+        match self {
+            Config::Quatprop {
+                method,
+                stab,
+                input,
+                ..
+            } => Config::Quatprop {
+                method,
+                stab,
+                input,
+                accumulator: acc,
+            },
+            peer => peer,
         }
     }
 
@@ -163,13 +192,17 @@ impl Config {
                 method,
                 stab,
                 input,
-                compensated,
+                accumulator,
             } => format!(
                 "quatprop {} {} + {}{}",
                 scheme_name(method),
                 input.name(),
                 stab.name(),
-                if compensated { ", compensated" } else { "" }
+                match accumulator {
+                    Acc::Plain => "",
+                    Acc::Kahan => ", Kahan",
+                    Acc::FloatFloat => ", FloatFloat",
+                }
             ),
             Config::Peer(p) => p.name().into(),
         }
@@ -213,8 +246,8 @@ impl Config {
                 method,
                 stab,
                 input,
-                compensated,
-            } => build_quatprop(method, stab, input, compensated, q0)
+                accumulator,
+            } => build_quatprop(method, stab, input, accumulator, q0)
                 .map_err(|e| format!("{}: {e}", self.label())),
             Config::Peer(p) => T::peer(p, q0, nominal_dt).ok_or_else(|| {
                 format!(
@@ -369,23 +402,26 @@ fn boxed<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'stati
     q0: Quat<T>,
     s: S,
     z: Z,
-    compensated: bool,
+    accumulator: Acc,
 ) -> Result<Box<dyn Integrator<T>>, Error> {
-    let p = Propagator::new(q0, s, I::fresh(), z)?;
-    Ok(if compensated {
-        Box::new(QuatpropRun {
-            p: p.with_accumulator(Kahan::new()),
-            started: false,
-            refused: 0,
-            first_error: None,
-        })
-    } else {
+    fn run<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'static, A>(
+        p: Propagator<T, S, I, Z, A>,
+    ) -> Box<dyn Integrator<T>>
+    where
+        A: Accumulator<T> + 'static,
+    {
         Box::new(QuatpropRun {
             p,
             started: false,
             refused: 0,
             first_error: None,
         })
+    }
+    let p = Propagator::new(q0, s, I::fresh(), z)?;
+    Ok(match accumulator {
+        Acc::Plain => run(p),
+        Acc::Kahan => run(p.with_accumulator(Kahan::new())),
+        Acc::FloatFloat => run(p.with_accumulator(FloatFloat::new())),
     })
 }
 
@@ -393,16 +429,16 @@ fn build_quatprop<T: Real>(
     method: SchemeKind,
     stab: Stab,
     input: Input,
-    compensated: bool,
+    accumulator: Acc,
     q0: Quat<T>,
 ) -> Result<Box<dyn Integrator<T>>, String> {
     macro_rules! with_input {
         ($s:expr, $z:expr) => {
             match input {
-                Input::Hold => boxed::<T, _, Hold, _>(q0, $s, $z, compensated),
-                Input::Linear => boxed::<T, _, Linear<T>, _>(q0, $s, $z, compensated),
-                Input::History => boxed::<T, _, History<T>, _>(q0, $s, $z, compensated),
-                Input::Mid => boxed::<T, _, TwiceRate<T>, _>(q0, $s, $z, compensated),
+                Input::Hold => boxed::<T, _, Hold, _>(q0, $s, $z, accumulator),
+                Input::Linear => boxed::<T, _, Linear<T>, _>(q0, $s, $z, accumulator),
+                Input::History => boxed::<T, _, History<T>, _>(q0, $s, $z, accumulator),
+                Input::Mid => boxed::<T, _, TwiceRate<T>, _>(q0, $s, $z, accumulator),
             }
             .map_err(|e| format!("{e:?}"))
         };

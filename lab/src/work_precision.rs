@@ -6,7 +6,7 @@
 //! (`firmware/bench-m4f.csv`, written by `python3 firmware/figures.py`). The f32 arithmetic is bit-identical
 //! on the M4F and the host (tests/firmware_snapshot.rs), so the host's error is the target's error.
 
-use crate::configs::{scheme_name, Config, Input, LabReal, Peer, Sample, Stab};
+use crate::configs::{scheme_name, Acc, Config, Input, LabReal, Peer, Sample, Stab};
 use crate::plot::{plot, Axis, Series};
 use crate::scenes::Scene;
 use crate::table::{self, cell, Csv, Table};
@@ -149,12 +149,9 @@ pub fn scheme_set() -> Vec<Config> {
         v.push(Config::qp(m, Stab::FirstOrder, Input::History));
     }
     v.push(Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Mid));
-    v.push(Config::Quatprop {
-        method: SchemeKind::ExpMap,
-        stab: Stab::FirstOrder,
-        input: Input::History,
-        compensated: true,
-    });
+    let history = Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History);
+    v.push(history.with(Acc::Kahan));
+    v.push(history.with(Acc::FloatFloat));
     v.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
     v
 }
@@ -860,7 +857,7 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
             method,
             stab,
             input,
-            compensated: false,
+            accumulator: Acc::Plain,
         } = *c
         else {
             return None;
@@ -959,12 +956,8 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
         Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Linear),
         Config::qp(SchemeKind::Rk4, Stab::FirstOrder, Input::Linear),
         Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History),
-        Config::Quatprop {
-            method: SchemeKind::ExpMap,
-            stab: Stab::FirstOrder,
-            input: Input::History,
-            compensated: true,
-        },
+        Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History).with(Acc::Kahan),
+        Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History).with(Acc::FloatFloat),
         Config::qp(SchemeKind::Rk4, Stab::FirstOrder, Input::History),
         Config::qp(SchemeKind::Magnus4, Stab::FirstOrder, Input::History),
     ];
