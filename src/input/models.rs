@@ -107,11 +107,11 @@ impl<T: Real> InputModel<T> for Linear<T> {
 ///
 /// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
 /// third a quadratic one (third). Equally spaced samples (each spacing within
-/// [`History::SPACING_TOLERANCE`] of the next) use constant weights; jittered ones the cubic through the samples at their true times (each `dt` as
-/// given), still fourth order. A gap — a `dt` more than [`History::GAP_RATIO`] times the previous one, or
-/// less than its inverse (a refused or dropped sample, a restarted sensor) — restarts the history at the
-/// last sample, so that interval is integrated linearly over its true length and the order builds up
-/// again.
+/// [`History::SPACING_TOLERANCE`] of the next) use constant weights; jittered ones the cubic through the
+/// samples at their true times (each `dt` as given), still fourth order. A gap — a `dt` more than
+/// [`History::GAP_RATIO`] times the previous one, or less than its inverse (a refused or dropped sample, a
+/// restarted sensor) — restarts the history at the last sample, so that interval is integrated linearly
+/// over its true length and the order builds up again.
 ///
 /// ```
 /// use quatprop::{input::History, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};

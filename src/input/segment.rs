@@ -133,6 +133,20 @@ fn earlier<T: Real>(d1: Vec3<T>, d2: Vec3<T>) -> Vec3<T> {
     d2 * T::from_f64(4.0) - d1
 }
 
+/// The equally spaced history's mean rate over the step as `ω_k + correction`: the correction for the
+/// cubic (`count` 4) and the quadratic (3), `None` for the linear step (2), which has no `ω_k` term.
+#[inline(always)]
+fn uniform_correction<T: Real>(ends: [Vec3<T>; 2], d: [Vec3<T>; 2], count: u8) -> Option<Vec3<T>> {
+    let [w2, w3] = ends;
+    let [d1, d2] = d;
+    let d3 = w3 - w2;
+    match count {
+        4 => Some((d3 * T::from_f64(9.0) + earlier(d1, d2)) * T::from_f64(1.0 / 24.0)),
+        3 => Some((d3 * T::from_f64(5.0) + d2) * T::from_f64(1.0 / 12.0)),
+        _ => None,
+    }
+}
+
 /// ω from the sample history: the polynomial through the last 2, 3 or 4 samples
 /// ω_{k−2}, ω_{k−1}, ω_k, ω_{k+1} on the last interval `[t_k, t_{k+1}]`.
 ///
@@ -249,14 +263,10 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
         match self {
             HistoryRate::Uniform { ends, d, count } => {
                 let [w2, w3] = *ends;
-                let [d1, d2] = *d;
-                let d3 = w3 - w2;
-                let mean = match count {
-                    4 => w2 + (d3 * T::from_f64(9.0) + earlier(d1, d2)) * T::from_f64(1.0 / 24.0),
-                    3 => w2 + (d3 * T::from_f64(5.0) + d2) * T::from_f64(1.0 / 12.0),
-                    _ => return (w2 + w3) * (hh * T::HALF),
-                };
-                mean * hh
+                match uniform_correction(*ends, *d, *count) {
+                    Some(correction) => (w2 + correction) * hh,
+                    None => (w2 + w3) * (hh * T::HALF),
+                }
             }
             HistoryRate::Newton { ends, d2, d3, r } => {
                 let [w2, w3] = *ends;
@@ -273,14 +283,10 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
         let (w2, correction) = match self {
             HistoryRate::Uniform { ends, d, count } => {
                 let [w2, w3] = *ends;
-                let [d1, d2] = *d;
-                let d3 = w3 - w2;
-                let correction = match count {
-                    4 => (d3 * T::from_f64(9.0) + earlier(d1, d2)) * T::from_f64(1.0 / 24.0),
-                    3 => (d3 * T::from_f64(5.0) + d2) * T::from_f64(1.0 / 12.0),
-                    _ => return sum_times_split(w2, w3, hh * T::HALF),
-                };
-                (w2, correction)
+                match uniform_correction(*ends, *d, *count) {
+                    Some(correction) => (w2, correction),
+                    None => return sum_times_split(w2, w3, hh * T::HALF),
+                }
             }
             HistoryRate::Newton { ends, d2, d3, r } => {
                 let [w2, w3] = *ends;
@@ -297,8 +303,8 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
     }
     /// `ω(½) × (ω_{k+1} − ω_k)`: uniform, ω(½) from the interpolant, `ω_k + (5/16)Δ₃ + (4Δ₂ − Δ₁)/16`
     /// (cubic; quadratic `ω_k + (3/8)Δ₃ + (1/8)Δ₂`), whose `Δ₃` term drops out of the cross product with
-    /// `Δ₃` (and `4Δ₂ − Δ₁` is the mean rate's too); Newton, ω(½) ≈ (ω_k + ω_{k+1})/2, which makes it `ω_k × ω_{k+1}` (the O(h²)
-    /// difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is `ω'(½)` to O(h³).
+    /// `Δ₃` (and `4Δ₂ − Δ₁` is the mean rate's too); Newton, ω(½) ≈ (ω_k + ω_{k+1})/2, which makes it
+    /// `ω_k × ω_{k+1}` (the O(h²) difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is `ω'(½)` to O(h³).
     #[inline(always)]
     fn rate_commutator(&self) -> Option<Vec3<T>> {
         match self {
