@@ -17,6 +17,7 @@ mod geiger;
 mod long_horizon;
 mod peers;
 mod plot;
+mod quiet;
 #[cfg(test)]
 mod registry;
 mod rigid_body;
@@ -43,6 +44,8 @@ pub struct Ctx {
     files: Vec<String>,
     /// Each study's wall and CPU time, in order.
     times: Vec<timing::StudyTimeRow>,
+    /// Whether host-time measurements ran at the core's quiet speed (the probe, watched over the process).
+    pub quiet: quiet::Quiet,
 }
 
 impl Ctx {
@@ -68,6 +71,7 @@ impl Ctx {
             failures: Vec::new(),
             files: Vec::new(),
             times: Vec::new(),
+            quiet: quiet::Quiet::new(),
         }
     }
 

@@ -1,7 +1,8 @@
 //! Work–precision: attitude error (final and maximum over the horizon) against cost per gyro sample, for
 //! configurations of quatprop and the peers on the same sample streams of a scene.
 //!
-//! Cost is host time per sample (the least of repeated in-process runs after a warm-up) and, for quatprop f32
+//! Cost is host time per sample (the least of repeated in-process runs at the core's quiet speed, see
+//! `crate::quiet`) and, for quatprop f32
 //! configurations the firmware bench measured, Cortex-M4F instructions per simulated second
 //! (`firmware/bench-m4f.csv`, written by `python3 firmware/figures.py`). The f32 arithmetic is bit-identical
 //! on the M4F and the host (tests/firmware_snapshot.rs), so the host's error is the target's error.
@@ -15,7 +16,7 @@ use quatprop::scheme::SchemeKind;
 use quatprop::{Error, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Floating-point precision of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,6 +45,9 @@ pub struct Point {
     pub ns_per_sample: f64,
     pub refused: u64,
     pub first_error: Option<Error>,
+    /// Timed runs at the core's quiet speed (`crate::quiet`); the cost is the least of them, or of every
+    /// run when there is none.
+    pub quiet_runs: usize,
 }
 
 impl Point {
@@ -75,19 +79,48 @@ pub fn stream<T: LabReal>(scene: &dyn Scene, hz: u32, horizon: f64) -> (Vec<Samp
     (samples, dt64)
 }
 
-/// Runs `configs` on `scene` at each rate: accuracy at 64 checkpoints, then `repeats` timed runs of each,
-/// interleaved (one run of every configuration per round, after a warm-up round), so that a slow spell of
-/// the shared machine falls on every configuration's runs alike instead of on one configuration's block;
-/// each configuration's cost is its least run.
+/// How a sweep times its configurations.
+#[derive(Clone, Copy, Debug)]
+pub struct Timing {
+    /// Quiet runs wanted for each configuration at each rate (its cost is the least of them).
+    pub runs: usize,
+    /// Least wall time of a sweep's timed rounds; zero for a quick run, which times `runs` rounds whatever
+    /// the probe says (and skips the probe's calibration).
+    pub window: Duration,
+}
+
+impl Timing {
+    /// `--quick`: one timed round after the warm-up.
+    pub const QUICK: Timing = Timing {
+        runs: 1,
+        window: Duration::ZERO,
+    };
+    /// A full run: 15 quiet runs each, over at least 10 s.
+    pub const FULL: Timing = Timing {
+        runs: 15,
+        window: Duration::from_secs(10),
+    };
+    /// A sweep stops timing after this long even if a configuration has too few quiet runs (its point's
+    /// `quiet_runs` says so, and the study's text).
+    pub const CAP: Duration = Duration::from_secs(180);
+}
+
+/// Runs `configs` on `scene` at each rate: accuracy at 64 checkpoints, then timed runs of each
+/// configuration at each rate, interleaved (one run of every configuration at every rate per round, after a
+/// warm-up round), with the quiet-core probe (`crate::quiet`) timed between runs. Rounds go on until every
+/// configuration has `timing.runs` quiet runs, `timing.window` has passed and the probe is calibrated (or
+/// `Timing::CAP` has passed); each configuration's cost is its least quiet run.
 pub fn sweep<T: LabReal>(
     ctx: &mut Ctx,
     scene: &dyn Scene,
     configs: &[Config],
     rates: &[u32],
     horizon: f64,
-    repeats: usize,
+    timing: Timing,
 ) -> Vec<Point> {
     let mut points = Vec::new();
+    // Each rate's stream, initial attitude and points, kept for the timed rounds.
+    let mut streams = Vec::new();
     for &hz in rates {
         let (samples, dt) = stream::<T>(scene, hz, horizon);
         let n = samples.len() - 1;
@@ -121,34 +154,106 @@ pub fn sweep<T: LabReal>(
                 samples: n,
                 final_err,
                 max_err,
-                ns_per_sample: f64::INFINITY,
+                ns_per_sample: f64::NAN,
                 refused,
                 first_error,
+                quiet_runs: 0,
             });
         }
-        // Timed rounds; round 0 warms up.
-        for round in 0..=repeats {
-            for p in &mut points[first..] {
-                let Ok(mut r) = p.config.build::<T>(q0, samples[1].dt) else {
+        streams.push((samples, q0, first..points.len()));
+    }
+    // Timed rounds; round 0 warms up. Each run: (ns per sample, the slower probe on its two sides).
+    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new(); points.len()];
+    let started = Instant::now();
+    let mut before = ctx.quiet.probe();
+    for round in 0.. {
+        let t_round = Instant::now();
+        ctx.tick();
+        for (samples, q0, range) in &streams {
+            let n = samples.len() - 1;
+            for i in range.clone() {
+                let Ok(mut r) = points[i].config.build::<T>(*q0, samples[1].dt) else {
                     continue;
                 };
                 let t0 = Instant::now();
-                r.feed(std::hint::black_box(&samples));
+                r.feed(std::hint::black_box(samples));
                 std::hint::black_box(r.attitude());
                 let ns = t0.elapsed().as_nanos() as f64 / n as f64;
+                let after = ctx.quiet.probe();
                 if round > 0 {
-                    // The least run: a run is only ever slowed by other work on the machine.
-                    p.ns_per_sample = p.ns_per_sample.min(ns);
+                    runs[i].push((ns, before.max(after)));
                 }
+                before = after;
             }
         }
-        for p in &mut points[first..] {
-            if !p.ns_per_sample.is_finite() {
-                p.ns_per_sample = f64::NAN;
-            }
+        ctx.quiet.watched(t_round.elapsed());
+        if round < timing.runs {
+            continue;
+        }
+        let elapsed = started.elapsed();
+        let quiet = &ctx.quiet;
+        let enough = runs
+            .iter()
+            .all(|r| r.iter().filter(|&&(_, p)| quiet.is_quiet(p)).count() >= timing.runs);
+        if timing.window.is_zero()
+            || (enough && elapsed >= timing.window && quiet.calibrated())
+            || elapsed >= Timing::CAP
+        {
+            break;
         }
     }
+    for (p, r) in points.iter_mut().zip(&runs) {
+        let least = |quiet_only: bool| {
+            r.iter()
+                .filter(|&&(_, probe)| !quiet_only || ctx.quiet.is_quiet(probe))
+                .map(|&(ns, _)| ns)
+                .fold(f64::INFINITY, f64::min)
+        };
+        p.quiet_runs = r
+            .iter()
+            .filter(|&&(_, probe)| ctx.quiet.is_quiet(probe))
+            .count();
+        let ns = if p.quiet_runs > 0 {
+            least(true)
+        } else {
+            least(false)
+        };
+        p.ns_per_sample = if ns.is_finite() { ns } else { f64::NAN };
+    }
     points
+}
+
+/// What a study's text says about its timing: the rule, and the points without enough quiet runs.
+pub fn timing_note(points: &[Point], timing: Timing) -> String {
+    let short: Vec<String> = points
+        .iter()
+        .filter(|p| p.quiet_runs < timing.runs)
+        .map(|p| format!("{} at {} Hz ({})", p.config.label(), p.hz, p.quiet_runs))
+        .collect();
+    let rule = format!(
+        "Host time: each configuration's least run among its runs at the core's quiet speed; the runs are \
+         interleaved over every configuration and rate, a fixed probe workload is timed between them, and a run \
+         counts as quiet when the probes on both sides are within {:.0} % of the probe's least time in this \
+         process (this machine is a shared VM on which the same code alternates between two speeds; see \
+         `lab/src/quiet.rs`). Rounds continued until every configuration had {} quiet runs, at least {} s had \
+         passed and the probe had been watched for {} s in this process.",
+        100.0 * crate::quiet::Quiet::TOLERANCE,
+        timing.runs,
+        timing.window.as_secs(),
+        crate::quiet::Quiet::CALIBRATION.as_secs(),
+    );
+    if timing.window.is_zero() {
+        "Host time: one timed run after a warm-up (`--quick`: not a measurement of record)."
+            .to_string()
+    } else if short.is_empty() {
+        rule
+    } else {
+        format!(
+            "{rule} **Fewer quiet runs** (after {} s; the cost is then the least of all runs): {}.",
+            Timing::CAP.as_secs(),
+            short.join(", ")
+        )
+    }
 }
 
 /// The comparison set of a scene: every scheme with linear input, the fourth-order sample-history and mid
@@ -615,11 +720,11 @@ pub fn sweep_in(
     configs: &[Config],
     rates: &[u32],
     horizon: f64,
-    repeats: usize,
+    timing: Timing,
 ) -> Vec<Point> {
     match prec {
-        Precision::F32 => sweep::<f32>(ctx, scene, configs, rates, horizon, repeats),
-        Precision::F64 => sweep::<f64>(ctx, scene, configs, rates, horizon, repeats),
+        Precision::F32 => sweep::<f32>(ctx, scene, configs, rates, horizon, timing),
+        Precision::F64 => sweep::<f64>(ctx, scene, configs, rates, horizon, timing),
     }
 }
 
@@ -666,11 +771,11 @@ impl Options {
             self.precisions.clone()
         }
     }
-    fn repeats(&self) -> usize {
+    fn timing(&self) -> Timing {
         if self.quick {
-            1
+            Timing::QUICK
         } else {
-            15
+            Timing::FULL
         }
     }
     fn rates_horizon(&self, scene: &dyn Scene) -> (Vec<u32>, f64) {
@@ -705,6 +810,7 @@ pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> Str
     let mut csv: Vec<WpScenes> = Vec::new();
     let mut summary = Vec::new();
     let mut figures = String::new();
+    let mut timed = Vec::new();
     for scene in scenes {
         if !opt.scenes.is_empty() && !opt.scenes.iter().any(|s| s == scene.key()) {
             continue;
@@ -718,8 +824,9 @@ pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> Str
                 &configs,
                 &rates,
                 horizon,
-                opt.repeats(),
+                opt.timing(),
             );
+            timed.extend(points.iter().cloned());
             csv.extend(
                 wp_rows(scene.key(), prec, &points)
                     .into_iter()
@@ -767,9 +874,10 @@ pub fn per_scene(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Options) -> Str
         "### Work–precision per scene, f32 and f64\n\nEvery scheme with linear input, the sample-history and mid \
          inputs, all with FirstOrder, and every peer, on the same samples of each scene (ω(t_k), t_k = k·dt with dt \
          in the run's precision). Error: final and maximum over 64 checkpoints of the horizon (the plots show the \
-         maximum); cost: host ns per gyro sample (the least of the timed runs). Refused steps (a step angle beyond a scheme's stability \
+         maximum); cost: host ns per gyro sample. {} Refused steps (a step angle beyond a scheme's stability \
          bound) are reported, never dropped: such a point is left out of the plots and the Pareto front. CSV: \
-         `work_precision_scenes.csv`.\n\n{table}\n{figures}"
+         `work_precision_scenes.csv`.\n\n{table}\n{figures}",
+        timing_note(&timed, opt.timing())
     )
 }
 
@@ -790,8 +898,10 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let (rates, horizon) = opt.rates_horizon(scene);
     let mut csv: Vec<WpStabilizers> = Vec::new();
     let mut figures = String::new();
+    let mut timed = Vec::new();
     for prec in opt.precisions() {
-        let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.repeats());
+        let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.timing());
+        timed.extend(points.iter().cloned());
         csv.extend(
             wp_rows(scene.key(), prec, &points)
                 .into_iter()
@@ -811,8 +921,9 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
         "### Work–precision per stabilizer: {}\n\nRk4 with linear input and the exponential map with the sample \
          history, each with every stabilizer (Every(16); Baumgarte k = 0.5 /s, for Rk4 only: since quatprop 0.2 \
          Baumgarte is a right-hand-side option of the Runge–Kutta schemes, so the exponential map has no Baumgarte \
-         row). CSV: `work_precision_stabilizers.csv`.\n\n{table}\n{figures}",
-        scene.name()
+         row). {} CSV: `work_precision_stabilizers.csv`.\n\n{table}\n{figures}",
+        scene.name(),
+        timing_note(&timed, opt.timing())
     )
 }
 
@@ -849,8 +960,10 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
     let mut csv: Vec<WpGrid> = Vec::new();
     let mut f32_points = Vec::new();
     let mut counts = 0;
+    let mut timed = Vec::new();
     for prec in opt.precisions() {
-        let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.repeats());
+        let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.timing());
+        timed.extend(points.iter().cloned());
         counts += points.len();
         csv.extend(wp_rows(scene.key(), prec, &points).into_iter().map(WpGrid));
         if prec == Precision::F32 {
@@ -861,8 +974,9 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
     let Some(bench) = m4f_bench() else {
         return format!(
             "### Full grid and Cortex-M4F cost\n\n{counts} points (every scheme × stabilizer × input × rate × \
-             precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. No `firmware/bench-m4f.csv`: run `python3 firmware/figures.py` \
-             for the instruction-count overlay.\n"
+             precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. {} No `firmware/bench-m4f.csv`: run `python3 firmware/figures.py` \
+             for the instruction-count overlay.\n",
+            timing_note(&timed, opt.timing())
         );
     };
     let instr = |c: &Config| -> Option<f64> {
@@ -952,14 +1066,15 @@ pub fn grid_with_m4f(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String 
     let table = ctx.table(&pareto_rows);
     format!(
         "### Full grid and Cortex-M4F cost: {}\n\n{counts} points (every scheme × stabilizer × input model × rate × \
-         precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. The plot puts the f32 errors (bit-identical on the M4F) against \
+         precision; Baumgarte with the Runge–Kutta schemes only) in `work_precision_grid.csv`. {} The plot puts the f32 errors (bit-identical on the M4F) against \
          the instructions the firmware bench counted on the Cortex-M4F (`firmware/bench-m4f.csv`, from \
          `python3 firmware/figures.py`) times the steps per second; the bench measures ExpMap, Magnus4, Cf4 and \
          Rk4 with FirstOrder and Normalize on every input model (a configuration it does not measure has no \
          point here). Shown: the schemes among Euler, Rk2, Rk4, ExpMap and Magnus4 with FirstOrder that it \
          measured; the front is over every measured configuration.\n\n\
          ![m4f](wp_m4f_coning_f32.png)\n\n{table}",
-        scene.name()
+        scene.name(),
+        timing_note(&timed, opt.timing())
     )
 }
 
@@ -976,7 +1091,7 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     ];
     configs.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
     let (rates, horizon) = opt.rates_horizon(scene);
-    let points = sweep::<f32>(ctx, scene, &configs, &rates, horizon, opt.repeats());
+    let points = sweep::<f32>(ctx, scene, &configs, &rates, horizon, opt.timing());
     let csv: Vec<WpHeadline> = wp_rows(scene.key(), Precision::F32, &points)
         .into_iter()
         .map(WpHeadline)
@@ -1013,14 +1128,13 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let vs = ctx.table(&vs_rows);
     format!(
         "### Work–precision: coning in f32, one gyro sample per step\n\n![work-precision](work_precision_coning_f32.png)\n\n\
-         {}, horizon {horizon} s, gyro rates {rates:?} Hz, every configuration fed the same f32 samples. Host time: \
-         the least of {} timed runs after a warm-up (interference from other work on this shared 2-core machine only adds time, so the least run is the step's own cost), this machine. Peers as crates: `ahrs` 0.8 \
+         {}, horizon {horizon} s, gyro rates {rates:?} Hz, every configuration fed the same f32 samples. {}, this machine. Peers as crates: `ahrs` 0.8 \
          (`Madgwick::update_gyro`), `nalgebra` 0.34 (`UnitQuaternion`), `glam` 0.34 (`Quat::from_scaled_axis`), \
          all converted through `mint`; Fusion (C): its gyroscope update from its published source \
          (`lab/src/peers.rs`; its FusionOffset runs as the real C code in the bias section).\n\n{table}\n\
          At equal cost, in one run: for each peer at {r} Hz, quatprop's lowest maximum error among configurations \
          and rates that need no more host time per simulated second.\n\n{vs}",
         scene.name(),
-        opt.repeats()
+        timing_note(&points, opt.timing()).trim_end_matches('.')
     )
 }
