@@ -205,3 +205,15 @@ pub fn loglog_slope(hs: &[f64], errs: &[f64]) -> f64 {
 pub fn state<P: core::fmt::Debug>(p: &P) -> String {
     format!("{p:?}")
 }
+
+/// The bound on `|N| = |‖q‖² − 1|` (in units of ε) after one [`quatprop::stabilize::Normalize`] correction
+/// with the plain accumulator, of an attitude whose `‖q‖²` is `f` (the factor by which the step changed
+/// `‖q‖²`, the step's start being unit): 4 for `f ∈ [½, 2]`, otherwise `6 + 7(√f − 1)⁺` (src/stabilize.rs
+/// derives both; tests/normalize.rs measures them).
+pub fn normalize_bound_eps(f: f64) -> f64 {
+    if (0.5..=2.0).contains(&f) {
+        4.0
+    } else {
+        6.0 + 7.0 * (f.sqrt() - 1.0).max(0.0)
+    }
+}
