@@ -243,7 +243,8 @@ fn tick_clock_dt_is_positive_after_a_long_gap() {
 /// a large factor (a quadratic rate overshooting between its samples, inside Rk4's step bound) leaves
 /// `|N| = 7.7ε` with `Plain`, and with `Kahan` (which re-adds the low part lost in adding the large
 /// increment *after* the normalization, unscaled) 21ε. The documentation now says so (4ε for a change of
-/// `|q|²` within a factor of 2 with Plain, 32ε in every case the fuzzers reached): checked here.
+/// `|q|²` within a factor of 2 with Plain, `(6 + 7(√F − 1)⁺)ε` for a factor `F`, tests/normalize.rs; with
+/// Kahan 32ε in every case the fuzzers reached): checked here.
 #[test]
 fn normalize_stays_within_its_documented_bound_after_a_large_step() {
     use quatprop::accumulate::Kahan;
