@@ -2,20 +2,18 @@
 //! q and −q are the same rotation, and the Euler angles stay accurate at and near gimbal lock, where the
 //! seed's eq. (5)-(6) `acos` form loses half the digits.
 
+mod support;
+
 use quatprop::{EulerZxz, EulerZyx, Quat, Real, Vec3};
+use support::Xorshift;
 
 /// Round trips land within this many ε (angle between rotations, rad).
 const ROUND_TRIP_EPS: f64 = 16.0;
 
 /// Deterministic pseudo-random unit quaternions (xorshift64*), plus hand-picked hard cases.
 fn samples<T: Real>() -> Vec<Quat<T>> {
-    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = move || {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    let mut rng = Xorshift::new();
+    let mut next = move || rng.signed();
     let mut v: Vec<Quat<T>> = (0..2000)
         .map(|_| Quat::from_f64(Quat::new(next(), next(), next(), next())))
         .filter_map(|q: Quat<T>| q.normalized())

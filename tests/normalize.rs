@@ -11,39 +11,23 @@ use quatprop::input::DeltaAngles;
 use quatprop::scheme::{Baumgarte, Rk4};
 use quatprop::stabilize::{Normalize, Stabilizer, StabilizerKind};
 use quatprop::{DeltaAngle, Propagator, Quat, Real, Vec3};
-use support::normalize_bound_eps;
-
-/// xorshift64: uniform in [0, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-fn norm_squared(q: Quat<f64>) -> f64 {
-    q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z
-}
+use support::{normalize_bound_eps, Xorshift};
 
 /// Worst `|N| / bound` over `n` random quaternions in each binade of `F`, and the worst `|N|` in ε
 /// for `F ∈ [½, 2]` and outside it.
 fn worst<T: Real>(n: u32, eps: f64) -> (f64, f64, f64) {
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut rng = Xorshift::new();
     let (mut ratio, mut inside, mut outside) = (0.0_f64, 0.0_f64, 0.0_f64);
     for binade in -20..20 {
         for _ in 0..n {
-            let f = 2f64.powf(f64::from(binade) + rng.next());
-            let c = [(); 4].map(|()| 2.0 * rng.next() - 1.0);
+            let f = 2f64.powf(f64::from(binade) + rng.uniform());
+            let c = [(); 4].map(|()| rng.signed());
             let s = (f / c.iter().map(|v| v * v).sum::<f64>()).sqrt();
             let q = Quat::new(c[0] * s, c[1] * s, c[2] * s, c[3] * s);
             let q = Quat::<T>::from_f64(q);
-            let f = norm_squared(q.to_f64()); // the factor the rounded q has
+            let f = q.to_f64().norm_squared(); // the factor the rounded q has
             let out = q + Normalize.correction(q, 1).unwrap();
-            let e = (norm_squared(out.to_f64()) - 1.0).abs() / eps;
+            let e = out.to_f64().norm_error().abs() / eps;
             ratio = ratio.max(e / normalize_bound_eps(f));
             if (0.5..=2.0).contains(&f) {
                 inside = inside.max(e);
@@ -83,8 +67,8 @@ fn the_property_test_case_baumgarte_rk4_near_its_bound() {
         p.push(DeltaAngle::new(angle), dt).unwrap();
         p.attitude().to_f64()
     };
-    let f = norm_squared(step(StabilizerKind::Off));
-    let n = (norm_squared(step(StabilizerKind::Normalize)) - 1.0).abs() / f64::from(f32::EPSILON);
+    let f = step(StabilizerKind::Off).norm_squared();
+    let n = step(StabilizerKind::Normalize).norm_error().abs() / f64::from(f32::EPSILON);
     println!("F = {f:.3}, |N| = {n:.3}ε");
     assert!(f > 2.0, "F = {f}");
     assert!(n <= normalize_bound_eps(f), "{n}ε after F = {f}");

@@ -217,3 +217,25 @@ pub fn normalize_bound_eps(f: f64) -> f64 {
         6.0 + 7.0 * (f.sqrt() - 1.0).max(0.0)
     }
 }
+
+/// A deterministic generator (xorshift64*, Vigna 2016) for tests that sample many operands: `uniform()`
+/// in [0, 1), `signed()` in [−1, 1).
+pub struct Xorshift(u64);
+
+impl Xorshift {
+    /// The generator every test starts from unless it needs another stream.
+    pub const fn new() -> Self {
+        Self(0x9E37_79B9_7F4A_7C15)
+    }
+
+    pub fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    pub fn signed(&mut self) -> f64 {
+        self.uniform() * 2.0 - 1.0
+    }
+}
