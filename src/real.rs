@@ -105,7 +105,7 @@ pub trait Real:
 }
 
 macro_rules! impl_real {
-    ($t:ty, $sqrt:path, $sqrt_step:path, $sin:path, $sin_step:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
+    ($t:ty, $abs:path, $sqrt:path, $sqrt_step:path, $sin:path, $sin_step:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
         impl sealed::Float for $t {
             const EXP_TAYLOR_MAX_SQ: Self = $taylor;
             const HARDWARE_FLOAT: bool = $hw;
@@ -186,7 +186,9 @@ macro_rules! impl_real {
             }
             #[inline(always)]
             fn abs(self) -> Self {
-                <$t>::abs(self)
+                // Not `<$t>::abs`: before Rust 1.85 core has no inherent `abs`, and that path resolves to
+                // this trait method itself (unbounded recursion; the MSRV job runs the quick start).
+                $abs(self)
             }
             #[inline(always)]
             fn is_finite(self) -> bool {
@@ -198,6 +200,7 @@ macro_rules! impl_real {
 
 impl_real!(
     f32,
+    libm::fabsf,
     libm::sqrtf,
     crate::trig::sqrt_f32,
     libm::sinf,
@@ -218,6 +221,7 @@ impl_real!(
 );
 impl_real!(
     f64,
+    libm::fabs,
     libm::sqrt,
     libm::sqrt,
     libm::sin,

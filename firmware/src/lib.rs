@@ -1,9 +1,9 @@
-//! Shared code of the QEMU programs: the smoke scenes and the quick start (both also compiled on the host by
-//! `tests/firmware_snapshot.rs`), every propagator configuration as types (for the programs that must cover
+//! Shared code of the QEMU programs: the smoke scenes and the quick start (both also compiled on the host, where
+//! this library's tests compare their results with `expected/`: `firmware/check-host`), every propagator configuration as types (for the programs that must cover
 //! them all), the SysTick instruction counter, the one exit/panic module every program uses, and the
 //! embedded-hal driver demo: a scripted ICM-42688-P on SPI (`device_model`) read by the `icm426xx` driver into
 //! the quick start (`driver_demo`; both also compiled on the host).
-#![no_std]
+#![cfg_attr(not(test), no_std)]
 
 pub mod configs;
 pub mod device_model;
@@ -15,3 +15,11 @@ pub mod scenes;
 pub mod exit;
 #[cfg(target_os = "none")]
 pub mod icount;
+
+/// The host half of the firmware checks (`firmware/check-host`): the scenes, the quick start and the driver
+/// demo bit for bit against `expected/`, and the README's quick start as this crate's `quickstart` module.
+#[cfg(test)]
+mod tests {
+    mod quick_start;
+    mod snapshot;
+}

@@ -1,2 +1,2 @@
 #![no_main]
-libfuzzer_sys::fuzz_target!(|data: &[u8]| quatprop_fuzz::checks::push::run(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| quatprop_fuzz_checks::push::run(data));

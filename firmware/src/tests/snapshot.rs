@@ -1,26 +1,13 @@
-//! Host half of the firmware checks: runs the firmware's own scene code (`firmware/src/scenes.rs`) and the
-//! README's quick start (`firmware/src/quickstart.rs`) and the embedded-hal driver demo
-//! (`firmware/src/device_model.rs`, `firmware/src/driver_demo.rs`), compiled here for the host, and asserts that every
-//! result is bit-identical to `firmware/expected/*.txt`. `firmware/check-boards` runs the same code on each
-//! QEMU board and diffs its output against the same files. IEEE binary32 on both sides, no FMA contraction,
-//! the same libm code: any difference is a bug to explain.
+//! Host half of the firmware checks: runs the firmware's own scene code (`scenes`), the README's quick start
+//! (`quickstart`) and the embedded-hal driver demo (`device_model`, `driver_demo`), compiled for the host, and
+//! asserts that every result is bit-identical to `firmware/expected/*.txt`. `firmware/check-boards` runs the
+//! same code on each QEMU board and diffs its output against the same files. IEEE binary32 on both sides, no
+//! FMA contraction, the same libm code: any difference is a bug to explain.
 //!
-//! The expected files are written by this test, from the host:
-//! `QUATPROP_BLESS=1 cargo test --test firmware_snapshot` (then run `firmware/check-boards`).
+//! Run by `firmware/check-host`, which also writes the expected files: `QUATPROP_BLESS=1 firmware/check-host`
+//! (then run `firmware/check-boards`).
 
-#[path = "../firmware/src/scenes.rs"]
-#[allow(dead_code)]
-mod scenes;
-
-#[path = "../firmware/src/quickstart.rs"]
-mod quickstart;
-
-#[path = "../firmware/src/device_model.rs"]
-mod device_model;
-
-#[path = "../firmware/src/driver_demo.rs"]
-mod driver_demo;
-
+use crate::{device_model, driver_demo, quickstart, scenes};
 use embedded_hal::spi::{Operation, SpiDevice};
 use embedded_hal_mock::eh1::spi::{Mock as SpiMock, Transaction as SpiTransaction};
 use scenes::{bits, run, Config, Outcome, Scene};
@@ -28,7 +15,6 @@ use std::path::PathBuf;
 
 fn expected_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("firmware")
         .join("expected")
         .join(name)
 }

@@ -1,7 +1,8 @@
 //! The fuzz targets' input decoding and invariants, one module per target. Each `run(bytes)` decodes the
 //! bytes (any bytes: a short input reads as zeros) into calls on quatprop's public API and panics if an
-//! invariant fails. Only quatprop and std are used here, so `tests/fuzz_regressions.rs` replays a crash
-//! through exactly the same code (`#[path]` include) on the stable toolchain.
+//! invariant fails. The fuzz targets (`fuzz/fuzz_targets/*.rs`) call these, and this crate's own test
+//! (`tests/replay.rs`) replays every seed and every crash input through exactly the same code on the stable
+//! toolchain, with no fuzzing engine: `cargo test -p quatprop-fuzz-checks` in `fuzz/`.
 //!
 //! Floats come from a tag byte: a raw bit pattern (NaN payloads, ±∞, subnormals, huge values), a special
 //! value, or a plausible value of the right scale, so that the propagators take many steps between the
