@@ -293,6 +293,35 @@ fn sum_sq_minus_one_f64(w: f64, x: f64, y: f64, z: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::sealed::Float;
+    use super::Real;
+
+    /// `Real::abs` clears the sign bit and nothing else, in both precisions (on Rust < 1.85 an `abs` written
+    /// `<f32>::abs(self)` called itself: .ci/msrv runs this with the MSRV toolchain).
+    #[test]
+    fn abs_clears_the_sign_bit_only() {
+        for x in [
+            -1.5_f32,
+            1.5,
+            -0.0,
+            0.0,
+            -f32::INFINITY,
+            -f32::MIN_POSITIVE / 4.0,
+            -f32::NAN,
+        ] {
+            assert_eq!(Real::abs(x).to_bits(), x.to_bits() & 0x7fff_ffff, "{x}");
+        }
+        for x in [
+            -1.5_f64,
+            1.5,
+            -0.0,
+            0.0,
+            -f64::INFINITY,
+            -f64::MIN_POSITIVE / 4.0,
+            -f64::NAN,
+        ] {
+            assert_eq!(Real::abs(x).to_bits(), x.to_bits() & (u64::MAX >> 1), "{x}");
+        }
+    }
 
     #[test]
     fn sum_sq_minus_one_resolves_below_epsilon() {

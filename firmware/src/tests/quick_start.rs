@@ -22,7 +22,6 @@ fn readme_quick_start_is_the_firmware_quickstart_module() {
     );
 }
 
-
 /// The quick start drops nothing: a FIFO read longer than its stack batch gives bit for bit the
 /// attitude of the same samples in reads of at most one batch.
 #[test]

@@ -6,7 +6,6 @@
 use quatprop_fuzz_checks as checks;
 use std::path::Path;
 
-
 /// The check of each fuzz target, by its name.
 fn target(name: &str) -> fn(&[u8]) {
     match name {
@@ -79,4 +78,3 @@ fn every_crash_input_passes_its_target_now() {
     }
     println!("{replayed} crash inputs replayed");
 }
-
