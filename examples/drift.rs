@@ -190,7 +190,7 @@ pub fn table(steps: u64) -> String {
             };
             s.push_str(&format!(
                 "| {} | {} | {} | {} |\n",
-                Scheme::<f64>::information(&m).name,
+                m.information().name,
                 z.label(),
                 fmt_row(&r32),
                 fmt_row(&r64)

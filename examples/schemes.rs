@@ -4,7 +4,7 @@
 //!
 //! Run: `cargo run --release --example schemes [-- --out DIR]`
 
-use quatprop::scheme::{Baumgarte, Euler, Information, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind};
+use quatprop::scheme::{Baumgarte, Euler, Information, Rk2, Rk3, Rk4, Rk5, SchemeKind};
 
 /// The two step angles `h|ω|` (rad) of the norm-change columns.
 pub const STEP_ANGLES: [f64; 2] = [0.2, 0.02];
@@ -49,7 +49,7 @@ pub fn table() -> String {
     ));
     s.push_str("|---|---|---|---|---|---|---|\n");
     for m in SchemeKind::ALL {
-        let info: Information = Scheme::<f64>::information(&m);
+        let info: Information = m.information();
         s.push_str(&format!(
             "| {} | {} | {} | {} | {} | {:+.3e} | {:+.3e} |\n",
             info.name,

@@ -27,7 +27,7 @@ mod vec3;
 
 pub use convert::{EulerZxz, EulerZyx};
 pub use error::Error;
-pub use propagator::{Propagator, Refused};
+pub use propagator::{Propagator, Recommended, Refused};
 pub use quat::Quat;
 pub use real::Real;
 pub use sample::{DeltaAngle, GyroSample, Sample};

@@ -3,10 +3,10 @@
 
 use crate::accumulate::{Accumulator, Plain};
 use crate::frontend::{FixedPeriod, TickClock};
-use crate::input::InputModel;
+use crate::input::{History, InputModel};
 use crate::sample::Sample;
-use crate::scheme::Scheme;
-use crate::stabilize::Stabilizer;
+use crate::scheme::{ExpMap, Scheme};
+use crate::stabilize::{FirstOrder, Stabilizer};
 use crate::{Error, Quat, Real};
 
 /// Propagates a body-to-reference attitude quaternion from body-frame gyro samples.
@@ -66,6 +66,29 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer> Propagator<T, S, I,
             saturated: 0,
             pending: 0,
         })
+    }
+}
+
+/// The recommended configuration, by name: [`ExpMap`] + [`History`] + [`FirstOrder`], adding increments
+/// plainly. The most accurate per Cortex-M4F instruction in the project's measurements (docs/firmware.md,
+/// docs/report): fourth order with one sample per step and no latency, unit norm to a few ε for one
+/// multiply-add of correction.
+pub type Recommended<T> = Propagator<T, ExpMap, History<T>, FirstOrder>;
+
+impl<T: Real> Recommended<T> {
+    /// The recommended configuration ([`Recommended`]) from attitude `q0` (normalized here).
+    ///
+    /// ```
+    /// use quatprop::{GyroSample, Propagator, Quat, Vec3};
+    /// let mut p = Propagator::recommended(Quat::IDENTITY)?;
+    /// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f32)), 1.0e-3)?;
+    /// # Ok::<(), quatprop::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteQuaternion`] or [`Error::ZeroQuaternion`].
+    pub fn recommended(q0: Quat<T>) -> Result<Self, Error> {
+        Propagator::new(q0, ExpMap, History::new(), FirstOrder)
     }
 }
 

@@ -12,7 +12,7 @@
 mod drift;
 
 use drift::{run, DriftRow, Stabilization, BAUMGARTE_K, STEP};
-use quatprop::scheme::{Scheme, SchemeKind};
+use quatprop::scheme::SchemeKind;
 use quatprop::stabilize::StabilizerKind;
 use quatprop::{Error, Real};
 
@@ -25,7 +25,7 @@ const NORMALIZED_EPS: f64 = 4.0;
 /// Checks one row; `None` where the row does not exist (Baumgarte with an exponential map).
 fn check_row<T: Real>(m: SchemeKind, z: Stabilization) -> Option<DriftRow> {
     let eps = T::EPSILON.to_f64();
-    let info = Scheme::<f64>::information(&m);
+    let info = m.information();
     let f = info.norm_factor(STEP); // per-step factor of |q|², |ω| = 1
     let d = info.norm_change(STEP);
     let mut n_tail: Vec<f64> = Vec::new();
@@ -121,16 +121,14 @@ fn f32_and_f64_norm_error_stay_within_derived_bounds_for_every_stabilizer() {
         for z in Stabilization::ALL {
             let (Some(r32), Some(r64)) = (check_row::<f32>(m, z), check_row::<f64>(m, z)) else {
                 // Baumgarte is an option of the Runge–Kutta engine only.
-                assert!(Scheme::<f64>::information(&m)
-                    .step_angle_limit
-                    .is_infinite());
+                assert!(m.information().step_angle_limit.is_infinite());
                 assert_eq!(z, Stabilization::Baumgarte);
                 continue;
             };
             rows += 1;
             println!(
                 "{:6} {:14} f32: N {:+.2e} max|N| {:.2e} err {:.2e} | f64: N {:+.2e} max|N| {:.2e} err {:.2e}",
-                Scheme::<f64>::information(&m).name,
+                m.information().name,
                 z.label(),
                 r32.final_n,
                 r32.max_abs_n,

@@ -13,7 +13,7 @@
 
 mod support;
 
-use quatprop::scheme::{Scheme, SchemeKind};
+use quatprop::scheme::SchemeKind;
 use quatprop::stabilize::Off;
 use quatprop::{Quat, Vec3};
 use support::{loglog_slope, propagate, Coning, Input};
@@ -65,7 +65,7 @@ fn measured_orders(
     rate: &dyn Fn(f64) -> Vec3<f64>,
     t_end: f64,
 ) -> (f64, f64) {
-    let limit = Scheme::<f64>::information(&m).step_angle_limit;
+    let limit = m.information().step_angle_limit;
     let mut points: [(Vec<f64>, Vec<f64>); 2] = Default::default();
     for k in 2..=14 {
         let n = 1usize << k;
@@ -135,7 +135,7 @@ fn expected_constant(m: SchemeKind) -> (f64, f64) {
 fn check(label: &str, m: SchemeKind, input: Input, got: (f64, f64), want: (f64, f64)) {
     println!(
         "{label:9} {:8} {input:12?}: quaternion order {:.3} (doc {}), attitude order {:.3} (doc {})",
-        Scheme::<f64>::information(&m).name,
+        m.information().name,
         got.0,
         want.0,
         got.1,
@@ -177,10 +177,7 @@ fn order_on_constant_rate_every_scheme_and_input_model() {
     let (w, reference) = constant_scene();
     for m in SchemeKind::ALL {
         for input in Input::ALL {
-            if Scheme::<f64>::information(&m)
-                .step_angle_limit
-                .is_infinite()
-            {
+            if m.information().step_angle_limit.is_infinite() {
                 // The exponential maps are exact: the error is rounding only, whatever the step. Each step
                 // rounds the four components (≤ ε/2 each) in the product and the addition, a few ε per
                 // step; 64ε per step bounds it with room for the History prelude's set_attitude.
@@ -208,7 +205,7 @@ fn information_order_is_the_measured_order() {
     let (w, reference) = constant_scene();
     let c = Coning::STANDARD;
     for m in SchemeKind::ALL {
-        let info = Scheme::<f64>::information(&m);
+        let info = m.information();
         let measured = if info.step_angle_limit.is_finite() {
             measured_orders(m, Input::Hold, &reference, &|_| w, 1.3).0
         } else {

@@ -96,7 +96,7 @@ fn closed_form_factor(m: SchemeKind, x: f64) -> f64 {
 #[test]
 fn per_step_norm_factor_of_every_scheme_matches_its_stability_polynomial() {
     for m in SchemeKind::ALL {
-        let info = Scheme::<f64>::information(&m);
+        let info = m.information();
         for hw in [0.1, 0.2, 0.5] {
             let x = hw / 2.0;
             let f = closed_form_factor(m, x);
@@ -153,17 +153,17 @@ fn stability_bounds_are_where_the_norm_factor_crosses_its_level() {
         (SchemeKind::Rk4, 4.0 * 2f64.sqrt()),
     ];
     for (m, want) in cases {
-        let got = Scheme::<f64>::information(&m).step_angle_limit;
+        let got = m.information().step_angle_limit;
         assert!((got - want).abs() < 1e-9, "{m:?}: {got} vs {want}");
     }
     // Rk5 (Dormand–Prince): no closed form; check the defining property around the bound.
-    let l = Scheme::<f64>::information(&Rk5).step_angle_limit;
+    let l = Rk5.information().step_angle_limit;
     assert!(l > 1.9 && l < 2.1, "{l}");
     assert!(closed_form_factor(SchemeKind::Rk5, 0.5 * l * 0.999) < 1.0);
     assert!(closed_form_factor(SchemeKind::Rk5, 0.5 * l * 1.001) > 1.0);
     assert!(closed_form_factor(SchemeKind::Rk5, 0.5 * l * 0.5) < 1.0);
     for m in [SchemeKind::ExpMap, SchemeKind::Magnus4, SchemeKind::Cf4] {
-        let info = Scheme::<f64>::information(&m);
+        let info = m.information();
         assert_eq!(info.step_angle_limit, f64::INFINITY, "{m:?}");
         assert_eq!(info.norm_change_polynomial, [0.0; 7], "{m:?}");
     }
@@ -240,12 +240,12 @@ fn closed_form_r(m: SchemeKind, z: f64) -> f64 {
 #[test]
 fn baumgarte_gain_bound_is_half_the_real_axis_interval_of_each_rk_scheme() {
     fn check<S: RungeKutta + Scheme<f64>>(s: S, kind: SchemeKind) {
-        let info = Scheme::<f64>::information(&s);
+        let info = s.information();
         let y = info.real_axis_limit;
         let b = Baumgarte::new(s, 0.25_f64).unwrap();
         assert_eq!(b.gain(), 0.25);
         assert_eq!(b.gain_step_limit(), 0.5 * y, "{kind:?}");
-        assert_eq!(Scheme::<f64>::information(&b), info, "{kind:?}");
+        assert_eq!(b.information(), info, "{kind:?}");
         // Every t in (0, y] is stable, just beyond y is not.
         for i in 1..=1000 {
             let t = y * i as f64 / 1000.0;
@@ -261,8 +261,8 @@ fn baumgarte_gain_bound_is_half_the_real_axis_interval_of_each_rk_scheme() {
     check(Rk3, SchemeKind::Rk3);
     check(Rk4, SchemeKind::Rk4);
     check(Rk5, SchemeKind::Rk5);
-    assert_eq!(Scheme::<f64>::information(&Euler).real_axis_limit, 2.0);
-    assert!((Scheme::<f64>::information(&Rk2).real_axis_limit - 2.0).abs() < 1e-12);
+    assert_eq!(Euler.information().real_axis_limit, 2.0);
+    assert!((Rk2.information().real_axis_limit - 2.0).abs() < 1e-12);
 }
 
 /// With k = 0 Baumgarte's right-hand side is the plain one: its stage loop and the plain scheme's held-rate
@@ -284,7 +284,7 @@ fn baumgarte_with_zero_gain_is_the_plain_scheme() {
         assert!(
             d <= 100.0 * 2.0 * 8.0 * f64::EPSILON,
             "{}: {d:e}",
-            Scheme::<f64>::information(&s).name
+            s.information().name
         );
         // Not trivially equal because nothing moved: 20 rad of rotation.
         assert!(plain.attitude().angle_to(Quat::IDENTITY) > 0.1);

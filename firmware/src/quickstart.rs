@@ -1,10 +1,9 @@
-// The README's quick start, verbatim between the markers (tests/readme.rs checks that the README shows
-// exactly this code). Compiled into the M4F firmware (`quickstart` program) and into the host test, so the
-// two run the same f32 arithmetic.
+// The README's FIFO quick start, verbatim between the markers (this library's host tests,
+// src/tests/quick_start.rs, check that the README shows exactly this code). Compiled into the M4F firmware
+// (`quickstart` program) and into the host tests, so the two run the same f32 arithmetic.
 // quick start: begin
 use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
-use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder};
-use quatprop::{Error, GyroSample, Propagator, Quat};
+use quatprop::{Error, GyroSample, Propagator, Quat, Recommended};
 
 /// Samples converted per batch of a FIFO read.
 const BATCH: usize = 8;
@@ -15,7 +14,7 @@ pub struct Attitude {
     mounting: AxisRemap,
     bias: BiasEstimator<f32>,
     period: FixedPeriod<f32>,
-    propagator: Propagator<f32, ExpMap, History<f32>, FirstOrder>,
+    propagator: Recommended<f32>,
     batch: [GyroSample<f32>; BATCH],
     refused: u32,
 }
@@ -29,7 +28,7 @@ impl Attitude {
             // Learns the bias over 1 s windows while every axis stays within 0.05 rad/s (2.9 °/s).
             bias: BiasEstimator::new(1000, 0.05)?,
             period: FixedPeriod::new(1.0e-3)?,
-            propagator: Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?,
+            propagator: Propagator::recommended(Quat::IDENTITY)?,
             batch: [GyroSample::default(); BATCH],
             refused: 0,
         })

@@ -7,7 +7,7 @@ use crate::plot::{plot, Axis, Series};
 use crate::table::{self, Csv, Table};
 use crate::unchecked::held_step;
 use crate::Ctx;
-use quatprop::scheme::{Scheme, SchemeKind};
+use quatprop::scheme::SchemeKind;
 use quatprop::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -81,7 +81,7 @@ pub fn atlas(ctx: &mut Ctx, quick: bool) -> String {
     let mut rows = Vec::new();
     let mut bounds = Vec::new();
     for m in SchemeKind::ALL {
-        let info = Scheme::<f64>::information(&m);
+        let info = m.information();
         let mut np = Vec::new();
         let mut ep = Vec::new();
         let mut crossed = None;

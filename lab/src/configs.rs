@@ -23,7 +23,7 @@ use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
 
 /// A scheme's short name (`"Rk4"`), from the library's record.
 pub fn scheme_name(m: SchemeKind) -> &'static str {
-    Scheme::<f64>::information(&m).name
+    m.information().name
 }
 
 /// Every scheme whose right-hand side can carry Baumgarte's term (the explicit Runge–Kutta schemes).

@@ -22,7 +22,7 @@ fn finite_rate<T: Real>(s: &GyroSample<T>) -> Result<Vec3<T>, Error> {
 ///
 /// ```
 /// use quatprop::{input::Hold, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
-/// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, Hold, Off)?;
+/// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, Hold::new(), Off)?;
 /// p.push(GyroSample::new(Vec3::new(0.0, 0.0, 1.0_f64)), 0.5)?; // 1 rad/s about z for 0.5 s
 /// assert!((p.attitude().z - 0.25_f64.sin()).abs() < 1e-15);
 /// # Ok::<(), quatprop::Error>(())
@@ -30,6 +30,15 @@ fn finite_rate<T: Real>(s: &GyroSample<T>) -> Result<Vec3<T>, Error> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Hold;
+
+impl Hold {
+    /// The model (it keeps no state; the same as the unit value `Hold`), constructed as every input
+    /// model is.
+    #[must_use]
+    pub const fn new() -> Self {
+        Hold
+    }
+}
 
 impl<T: Real> InputModel<T> for Hold {
     type Sample = GyroSample<T>;

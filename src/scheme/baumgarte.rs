@@ -62,13 +62,19 @@ impl<S: RungeKutta, T: Real> Baumgarte<S, T> {
     pub fn gain_step_limit(&self) -> f64 {
         0.5 * S::INFORMATION.real_axis_limit
     }
+
+    /// The wrapped scheme's record ([`Information`]; its bounds hold for the rotation part of the
+    /// right-hand side).
+    #[must_use]
+    pub fn information(&self) -> Information {
+        S::INFORMATION
+    }
 }
 
 impl<S: RungeKutta, T: Real> Scheme<T> for Baumgarte<S, T> {
-    /// The wrapped scheme's record (its bounds hold for the rotation part of the right-hand side).
     #[inline(always)]
     fn information(&self) -> Information {
-        S::INFORMATION
+        Baumgarte::information(self)
     }
 
     #[inline]

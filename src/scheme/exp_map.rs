@@ -57,13 +57,21 @@ fn magnus4_half_angle<T: Real, G: Segment<T>>(segment: &G, hh: T) -> Vec3<T> {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ExpMap;
 
-impl<T: Real> Scheme<T> for ExpMap {
-    #[inline(always)]
-    fn information(&self) -> Information {
+impl ExpMap {
+    /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
+    #[must_use]
+    pub const fn information(self) -> Information {
         Information {
             name: "ExpMap",
             ..EXPONENTIAL
         }
+    }
+}
+
+impl<T: Real> Scheme<T> for ExpMap {
+    #[inline(always)]
+    fn information(&self) -> Information {
+        ExpMap::information(*self)
     }
     /// `q ⊗ (e − 1)` with `e = exp_q(φ)`.
     #[inline(always)]
@@ -101,13 +109,21 @@ impl<T: Real> Scheme<T> for ExpMap {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Magnus4;
 
-impl<T: Real> Scheme<T> for Magnus4 {
-    #[inline(always)]
-    fn information(&self) -> Information {
+impl Magnus4 {
+    /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
+    #[must_use]
+    pub const fn information(self) -> Information {
         Information {
             name: "Magnus4",
             ..EXPONENTIAL
         }
+    }
+}
+
+impl<T: Real> Scheme<T> for Magnus4 {
+    #[inline(always)]
+    fn information(&self) -> Information {
+        Magnus4::information(*self)
     }
     #[inline(always)]
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
@@ -143,13 +159,21 @@ impl<T: Real> Scheme<T> for Magnus4 {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Cf4;
 
-impl<T: Real> Scheme<T> for Cf4 {
-    #[inline(always)]
-    fn information(&self) -> Information {
+impl Cf4 {
+    /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
+    #[must_use]
+    pub const fn information(self) -> Information {
         Information {
             name: "Cf4",
             ..EXPONENTIAL
         }
+    }
+}
+
+impl<T: Real> Scheme<T> for Cf4 {
+    #[inline(always)]
+    fn information(&self) -> Information {
+        Cf4::information(*self)
     }
     #[inline(always)]
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {

@@ -39,8 +39,8 @@ use crate::{Error, Quat, Real};
 /// What a scheme is, for analysis: one record per scheme (order, stability bounds, norm-factor polynomial).
 ///
 /// ```
-/// use quatprop::scheme::{Rk4, Scheme};
-/// let info = Scheme::<f64>::information(&Rk4);
+/// use quatprop::scheme::Rk4;
+/// let info = Rk4.information();
 /// assert_eq!((info.name, info.order), ("Rk4", 4));
 /// assert!((info.step_angle_limit - 4.0 * 2f64.sqrt()).abs() < 1e-12);
 /// // The seed's eq. (3): |q|² shrinks by β = x⁶/72 − x⁸/576 per step, x = h|ω|/2.
@@ -185,10 +185,19 @@ macro_rules! each {
     };
 }
 
+impl SchemeKind {
+    /// What the chosen scheme is: order, stability bounds, norm factor ([`Information`]).
+    #[must_use]
+    pub fn information(self) -> Information {
+        let this = &self;
+        each!(this, s => s.information())
+    }
+}
+
 impl<T: Real> Scheme<T> for SchemeKind {
     #[inline]
     fn information(&self) -> Information {
-        each!(self, s => Scheme::<T>::information(&s))
+        SchemeKind::information(*self)
     }
     #[inline]
     fn check<G: Segment<T>>(&self, segment: &G, h: T) -> Result<(), Error> {

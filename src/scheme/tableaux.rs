@@ -13,6 +13,7 @@
 //! serves the embedded error estimate).
 
 use super::tableau::{ButcherTableau, MAX_STAGES};
+use super::Information;
 
 const Z: [f64; MAX_STAGES] = [0.0; MAX_STAGES];
 
@@ -233,3 +234,17 @@ mod tests {
         assert!((dev[3] + 1.0 / 1800.0).abs() < 1e-16, "{}", dev[3]);
     }
 }
+
+macro_rules! information {
+    ($($t:ident),+) => {$(
+        impl $t {
+            /// What this scheme is: order, stability bounds, norm factor ([`Information`]), computed from its
+            /// tableau at compile time.
+            #[must_use]
+            pub const fn information(self) -> Information {
+                <$t as ButcherTableau>::INFORMATION
+            }
+        }
+    )+};
+}
+information!(Euler, Rk2, Rk3, Rk4, Rk5);
