@@ -140,10 +140,18 @@ def run_burst(out):
             if b.group(4) != "true":
                 raise SystemExit("burst: an attitude differs from the single pushes':\n" + line)
             burst[(b.group(1), int(b.group(2)))] = float(b.group(3))
+        c = re.match(r"bench config (\S+) len=(\d+) static=([\d.]+) configured=([\d.]+) identical=(true|false)$",
+                     line)
+        if c:
+            if c.group(5) != "true":
+                raise SystemExit("burst: the run-time configuration's attitude differs from the static types':\n"
+                                 + line)
+            burst[("config", c.group(1))] = (float(c.group(3)), float(c.group(4)))
     if "bench burst done" not in out:
         raise SystemExit("burst did not finish:\n" + out)
     want = [("push-const-dt", 1), ("push-period", 1)] + [(w, n) for w in ("push_burst", "quickstart")
                                                           for n in (1, 8, 32)]
+    want += [("config", "recommended"), ("config", "rk4-linear-normalize-kahan")]
     if sorted(burst) != sorted(want):
         raise SystemExit(f"burst printed rows {sorted(burst)}, expected {sorted(want)}")
     return burst
@@ -264,6 +272,18 @@ def document(bench, quick, burst, flash, stack, tools):
     o.append("|---:|---:|")
     for n in (1, 8, 32):
         o.append(f"| {n} | {burst[('quickstart', n)]:.1f} |")
+    o.append("")
+    o.append("### The run-time configuration\n")
+    o.append("Bursts of 32 through `config::Configured` (a `Config` value chosen at run time: one `match` per "
+             "burst, then the loop of the static types) against the static types' `push_burst`, measured by "
+             "the `burst` program as above; both end on the same bits (checked). The stabilizer is the run-time "
+             "`StabilizerKind` inside the loop; scheme, input model and accumulator are the static types.\n")
+    o.append("| configuration | static types | `Configured` | ratio |")
+    o.append("|---|---:|---:|---:|")
+    for key, label in (("recommended", "ExpMap + History + FirstOrder, Plain (`Config::RECOMMENDED`)"),
+                       ("rk4-linear-normalize-kahan", "Rk4 + Linear + Normalize, Kahan")):
+        st, cf = burst[("config", key)]
+        o.append(f"| {label} | {st:.1f} | {cf:.1f} | {cf / st:.3f} |")
     o.append("")
     o.append("## Flash per configuration\n")
     o.append("Section sizes (bytes, `llvm-size -A`) of the `minimal` program on thumbv7em-none-eabihf: one "

@@ -63,6 +63,12 @@ pub enum Error {
     InvalidScale,
     /// The step produced a non-finite attitude (arithmetic overflow); the step was discarded.
     NonFiniteResult,
+    /// A [`crate::config::Config`] asks for Baumgarte's term on a scheme that is not Runge–Kutta (the
+    /// term lives in the stages of the Runge–Kutta engine; the exponential maps have none).
+    BaumgarteNeedsRungeKutta,
+    /// A sample of the other kind: a rate sample for a [`crate::config::Configured`] propagator whose input
+    /// model takes delta angles, or a delta angle for one that takes rates.
+    WrongSampleKind,
 }
 
 impl fmt::Display for Error {
@@ -95,6 +101,12 @@ impl fmt::Display for Error {
                 f.write_str("count scale: full scale or sensitivity must be finite and positive")
             }
             Error::NonFiniteResult => f.write_str("step overflowed to a non-finite attitude"),
+            Error::BaumgarteNeedsRungeKutta => {
+                f.write_str("Baumgarte's term needs a Runge-Kutta scheme (Euler, Rk2 to Rk5)")
+            }
+            Error::WrongSampleKind => f.write_str(
+                "sample of the wrong kind: rates for a delta-angle input model, or delta angles for a rate one",
+            ),
         }
     }
 }

@@ -8,6 +8,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod accumulate;
+pub mod config;
 mod convert;
 mod dispatch;
 mod error;

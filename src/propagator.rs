@@ -39,12 +39,40 @@ pub struct Propagator<T, S, I, Z, A = Plain> {
     input: I,
     stabilizer: Z,
     accumulator: A,
+    counters: Counters,
+}
+
+/// What a propagator counts, apart from its parts (shared with [`crate::config::Configured`], which keeps
+/// the parts as run-time values and rebuilds a static propagator around them for each call).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct Counters {
     steps: u64,
     /// Steps the stabilizer left uncorrected (`corrections = steps − uncorrected`): a stabilizer that
     /// corrects every step then costs no counter update.
     uncorrected: u64,
     saturated: u64,
     pending: u32,
+}
+
+impl Counters {
+    #[inline(always)]
+    pub(crate) fn steps(&self) -> u64 {
+        self.steps
+    }
+    #[inline(always)]
+    pub(crate) fn corrections(&self) -> u64 {
+        self.steps.wrapping_sub(self.uncorrected)
+    }
+    #[inline(always)]
+    pub(crate) fn saturated(&self) -> u64 {
+        self.saturated
+    }
+    /// The attitude was replaced: no step is pending a correction.
+    #[inline(always)]
+    pub(crate) fn attitude_replaced(&mut self) {
+        self.pending = 0;
+    }
 }
 
 impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer> Propagator<T, S, I, Z, Plain> {
@@ -61,10 +89,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer> Propagator<T, S, I,
             input,
             stabilizer,
             accumulator: Plain,
-            steps: 0,
-            uncorrected: 0,
-            saturated: 0,
-            pending: 0,
+            counters: Counters::default(),
         })
     }
 }
@@ -118,7 +143,7 @@ impl core::error::Error for Refused {
     }
 }
 
-fn checked_unit<T: Real>(q0: Quat<T>) -> Result<Quat<T>, Error> {
+pub(crate) fn checked_unit<T: Real>(q0: Quat<T>) -> Result<Quat<T>, Error> {
     if !q0.is_finite() {
         return Err(Error::NonFiniteQuaternion);
     }
@@ -147,11 +172,35 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             input: self.input,
             stabilizer: self.stabilizer,
             accumulator,
-            steps: self.steps,
-            uncorrected: self.uncorrected,
-            saturated: self.saturated,
-            pending: self.pending,
+            counters: self.counters,
         }
+    }
+
+    /// A propagator from its parts, as [`Propagator::into_parts`] returns them (no validation: the parts
+    /// come from a propagator or from a validated [`crate::config::Config`]).
+    #[inline(always)]
+    pub(crate) fn from_parts(
+        q: Quat<T>,
+        scheme: S,
+        input: I,
+        stabilizer: Z,
+        accumulator: A,
+        counters: Counters,
+    ) -> Self {
+        Self {
+            q,
+            scheme,
+            input,
+            stabilizer,
+            accumulator,
+            counters,
+        }
+    }
+
+    /// The parts that change as samples arrive: attitude, input model, accumulator and counters.
+    #[inline(always)]
+    pub(crate) fn into_parts(self) -> (Quat<T>, I, A, Counters) {
+        (self.q, self.input, self.accumulator, self.counters)
     }
 
     /// Takes one sensor sample that arrives `dt` seconds after the previous one. The input model decides
@@ -191,7 +240,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             // Compute into locals (the accumulator is Copy), commit only on success.
             let mut acc = self.accumulator;
             let advanced = acc.advance(self.q, &self.scheme, &segment, h);
-            let pending = self.pending.saturating_add(1);
+            let pending = self.counters.pending.saturating_add(1);
             let (q, corrected) = match self.stabilizer.correction(advanced, pending) {
                 Some(c) => (acc.add(advanced, c), true),
                 None => (advanced, false),
@@ -201,12 +250,12 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
             }
             self.q = q;
             self.accumulator = acc;
-            self.steps = self.steps.wrapping_add(1);
+            self.counters.steps = self.counters.steps.wrapping_add(1);
             if corrected {
-                self.pending = 0;
+                self.counters.pending = 0;
             } else {
-                self.uncorrected = self.uncorrected.wrapping_add(1);
-                self.pending = pending;
+                self.counters.uncorrected = self.counters.uncorrected.wrapping_add(1);
+                self.counters.pending = pending;
             }
         }
         self.input = input;
@@ -322,7 +371,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     #[inline(always)]
     fn count_saturated(&mut self, sample: &I::Sample) {
         if sample.is_saturated() {
-            self.saturated = self.saturated.wrapping_add(1);
+            self.counters.saturated = self.counters.saturated.wrapping_add(1);
         }
     }
 
@@ -349,7 +398,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     pub fn set_attitude(&mut self, q: Quat<T>) -> Result<(), Error> {
         self.q = checked_unit(q)?;
         self.accumulator.reset();
-        self.pending = 0;
+        self.counters.attitude_replaced();
         Ok(())
     }
 
@@ -371,21 +420,21 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     #[inline]
     #[must_use]
     pub fn steps(&self) -> u64 {
-        self.steps
+        self.counters.steps
     }
 
     /// Post-step corrections applied by the stabilizer.
     #[inline]
     #[must_use]
     pub fn corrections(&self) -> u64 {
-        self.steps.wrapping_sub(self.uncorrected)
+        self.counters.corrections()
     }
 
     /// Saturated samples accepted so far (on every input path).
     #[inline]
     #[must_use]
     pub fn saturated_samples(&self) -> u64 {
-        self.saturated
+        self.counters.saturated
     }
 
     /// The scheme.

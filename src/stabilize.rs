@@ -189,8 +189,16 @@ impl Stabilizer for StabilizerKind {
     fn validate(&self) -> Result<(), Error> {
         each!(self, p => p.validate())
     }
-    #[inline]
+    /// `Normalize` is `Every(1)` (`pending` is at least 1 after a step), so the two share one branch and
+    /// one copy of the normalization.
+    #[inline(always)]
     fn correction<T: Real>(&self, q: Quat<T>, pending: u32) -> Option<Quat<T>> {
-        each!(self, p => p.correction(q, pending))
+        let every = match *self {
+            StabilizerKind::Off => return None,
+            StabilizerKind::FirstOrder => return FirstOrder.correction(q, pending),
+            StabilizerKind::Normalize => 1,
+            StabilizerKind::Every(n) => n,
+        };
+        Every(every).correction(q, pending)
     }
 }

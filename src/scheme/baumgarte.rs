@@ -45,6 +45,12 @@ impl<S: RungeKutta, T: Real> Baumgarte<S, T> {
         }
     }
 
+    /// `scheme` with the gain `k`, already validated (by [`crate::config::Config::validate`]).
+    #[inline(always)]
+    pub(crate) fn validated(scheme: S, k: T) -> Self {
+        Self { scheme, k }
+    }
+
     /// The gain `k` (1/s).
     #[must_use]
     pub fn gain(&self) -> T {

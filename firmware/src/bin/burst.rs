@@ -1,7 +1,9 @@
 //! FIFO bursts on the Cortex-M4F, counted with SysTick under QEMU `-icount shift=10` like `bench` (a program
 //! of its own, so the grid's figures keep `bench`'s code layout): `Propagator::push_burst` with a
 //! `FixedPeriod` (ExpMap + History + FirstOrder, Plain, f32) over bursts of 1, 8 and 32 samples against one
-//! `push` per sample, and the README quick start's `Attitude::on_fifo` fed FIFO reads of 1, 8 and 32.
+//! `push` per sample; the same bursts through the run-time configuration (`config::Configured` built from
+//! `Config::RECOMMENDED`), and Rk4 + Linear + Normalize + Kahan both ways; and the README quick start's
+//! `Attitude::on_fifo` fed FIFO reads of 1, 8 and 32.
 //!
 //! Each figure is (instructions of the loop over 256 samples − instructions of the same timed call over
 //! none) / 256: what a caller runs per sample, loop, `dt` and error check included. Every burst length must
@@ -12,10 +14,12 @@
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
+use quatprop::accumulate::{Accumulator, Kahan};
+use quatprop::config::{AccumulatorKind, Config, Configured, InputKind};
 use quatprop::frontend::FixedPeriod;
-use quatprop::input::History;
-use quatprop::scheme::ExpMap;
-use quatprop::stabilize::FirstOrder;
+use quatprop::input::{History, InputModel, Linear};
+use quatprop::scheme::{ExpMap, Rk4, Scheme, SchemeKind};
+use quatprop::stabilize::{FirstOrder, Normalize, Stabilizer, StabilizerKind};
 use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::exit::{exit, fail};
 use quatprop_firmware::icount::Counter;
@@ -86,11 +90,55 @@ fn singles_period(
     (Counter::instructions(Counter::ticks(t0, c.now())), refused)
 }
 
+/// `push_burst` for the static types and for the run-time configuration alike.
+trait Bursts {
+    fn burst(
+        &mut self,
+        s: &[GyroSample<f32>],
+        period: &mut FixedPeriod<f32>,
+    ) -> Result<usize, quatprop::Refused>;
+    fn state(&self) -> (Quat<f32>, u64);
+}
+
+impl<S, I, Z, A> Bursts for Propagator<f32, S, I, Z, A>
+where
+    S: Scheme<f32>,
+    I: InputModel<f32, Sample = GyroSample<f32>>,
+    Z: Stabilizer,
+    A: Accumulator<f32>,
+{
+    #[inline(always)]
+    fn burst(
+        &mut self,
+        s: &[GyroSample<f32>],
+        period: &mut FixedPeriod<f32>,
+    ) -> Result<usize, quatprop::Refused> {
+        self.push_burst(s, period)
+    }
+    fn state(&self) -> (Quat<f32>, u64) {
+        (self.attitude(), self.steps())
+    }
+}
+
+impl Bursts for Configured<f32> {
+    #[inline(always)]
+    fn burst(
+        &mut self,
+        s: &[GyroSample<f32>],
+        period: &mut FixedPeriod<f32>,
+    ) -> Result<usize, quatprop::Refused> {
+        self.push_burst(s, period)
+    }
+    fn state(&self) -> (Quat<f32>, u64) {
+        (self.attitude(), self.steps())
+    }
+}
+
 /// `bursts` calls of `push_burst` with `len` samples each (the same sample sequence as above).
 #[inline(never)]
-fn bursts(
+fn bursts<P: Bursts>(
     c: &Counter,
-    p: &mut Recommended,
+    p: &mut P,
     s: &[GyroSample<f32>; 32],
     period: &mut FixedPeriod<f32>,
     len: usize,
@@ -101,7 +149,7 @@ fn bursts(
     for k in 0..bursts {
         let at = (k * len) & 31;
         let burst = s.get(at..at + len).unwrap_or(&[]);
-        if p.push_burst(burst, period).is_err() {
+        if p.burst(burst, period).is_err() {
             refused += 1;
         }
     }
@@ -110,10 +158,73 @@ fn bursts(
 
 /// A warmed-up propagator and period (History full, one step taken).
 fn warmed(s: &[GyroSample<f32>; 32]) -> Option<(Recommended, FixedPeriod<f32>)> {
-    let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).ok()?;
+    warm(
+        Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).ok()?,
+        s,
+    )
+}
+
+/// `p` and a period after the first four samples.
+fn warm<P: Bursts>(mut p: P, s: &[GyroSample<f32>; 32]) -> Option<(P, FixedPeriod<f32>)> {
     let mut period = FixedPeriod::new(1.0e-3).ok()?;
-    p.push_burst(s.get(..4)?, &mut period).ok()?;
+    p.burst(s.get(..4)?, &mut period).ok()?;
     Some((p, period))
+}
+
+/// Bursts of 32 through `static_p` and through `configured` (the same configuration, chosen at run time):
+/// per-sample figures of both; false if anything was refused or the bits differ.
+fn static_vs_configured<P: Bursts>(
+    c: &Counter,
+    name: &str,
+    static_p: P,
+    configured: Configured<f32>,
+    s: &[GyroSample<f32>; 32],
+) -> bool {
+    let (Some((mut a, mut pa)), Some((mut b, mut pb))) = (warm(static_p, s), warm(configured, s))
+    else {
+        return false;
+    };
+    let len = 32;
+    let (empty, _) = bursts(c, &mut a, s, &mut pa, len, 0);
+    let (total, ra) = bursts(c, &mut a, s, &mut pa, len, BURST_SAMPLES / len);
+    let static_cost = per_sample_x100(total, empty);
+    let (empty, _) = bursts(c, &mut b, s, &mut pb, len, 0);
+    let (total, rb) = bursts(c, &mut b, s, &mut pb, len, BURST_SAMPLES / len);
+    let same = a.state() == b.state();
+    defmt::println!(
+        "bench config {=str} len={=usize} static={=u32}.{=u32:02} configured={=u32}.{=u32:02} identical={=bool}",
+        name,
+        len,
+        static_cost / 100,
+        static_cost % 100,
+        per_sample_x100(total, empty) / 100,
+        per_sample_x100(total, empty) % 100,
+        same
+    );
+    ra == 0 && rb == 0 && same
+}
+
+/// The run-time configuration against the static types.
+fn config_figures(c: &Counter) -> bool {
+    let s = burst_samples();
+    let rk4 = Config {
+        scheme: SchemeKind::Rk4,
+        input: InputKind::Linear,
+        stabilizer: StabilizerKind::Normalize,
+        accumulator: AccumulatorKind::Kahan,
+        ..Config::RECOMMENDED
+    };
+    let (Ok(rec_static), Ok(rec_config), Ok(rk4_static), Ok(rk4_config)) = (
+        Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder),
+        black_box(Config::RECOMMENDED).build(Quat::IDENTITY),
+        Propagator::new(Quat::IDENTITY, Rk4, Linear::new(), Normalize),
+        black_box(rk4).build(Quat::IDENTITY),
+    ) else {
+        return false;
+    };
+    let rk4_static = rk4_static.with_accumulator(Kahan::new());
+    static_vs_configured(c, "recommended", rec_static, rec_config, &s)
+        & static_vs_configured(c, "rk4-linear-normalize-kahan", rk4_static, rk4_config, &s)
 }
 
 /// (instructions of the loop over `BURST_SAMPLES` samples − instructions of the same timed call over none)
@@ -199,6 +310,7 @@ fn main() -> ! {
     };
     let c = Counter::new(cp.SYST);
     let mut ok = burst_figures(&c);
+    ok &= config_figures(&c);
     let w = rates();
     let mut fifo = [[0i16; 3]; 32];
     for (i, s) in fifo.iter_mut().enumerate() {
