@@ -2,7 +2,8 @@
 """Writes the measured C-vs-Rust figures into docs/c-api.md between its figure markers.
 
 Called by `ffi/ci --docs` with the numbers that run measured (no number is typed by hand):
-  figures.py DOC C_FLASH RUST_FLASH KINDS_FLASH C_PER RUST_PER KINDS_PER GCC_VERSION RUSTC_VERSION QEMU_VERSION
+  figures.py DOC C_FLASH RUST_FLASH KINDS_FLASH C_PER RUST_PER KINDS_PER MONO_FLASH MONO_PER GCC_VERSION
+             RUSTC_VERSION QEMU_VERSION
 """
 import sys
 
@@ -11,15 +12,16 @@ END = "<!-- figures: end -->"
 
 
 def main():
-    doc, c_flash, r_flash, k_flash, c_per, r_per, k_per, gcc, rustc, qemu = sys.argv[1:11]
-    c_flash, r_flash, k_flash = int(c_flash), int(r_flash), int(k_flash)
-    c_per, r_per, k_per = float(c_per), float(r_per), float(k_per)
+    doc, c_flash, r_flash, k_flash, c_per, r_per, k_per, m_flash, m_per, gcc, rustc, qemu = sys.argv[1:13]
+    c_flash, r_flash, k_flash, m_flash = int(c_flash), int(r_flash), int(k_flash), int(m_flash)
+    c_per, r_per, k_per, m_per = float(c_per), float(r_per), float(k_per), float(m_per)
     lines = [
         BEGIN,
         "",
         "| Cortex-M4F image (mps2-an386) | flash (text + data, bytes) | instructions per sample |",
         "| --- | ---: | ---: |",
-        f"| C quick start through the C API (run-time choice of everything) | {c_flash} | {c_per:.2f} |",
+        f"| C quick start through the C API (run-time choice of everything; default build) | {c_flash} | {c_per:.2f} |",
+        f"| the same, the C API built with the feature `monomorphized` | {m_flash} | {m_per:.2f} |",
         f"| Rust quick start's `Attitude` (static types), same C harness | {r_flash} | {r_per:.2f} |",
         f"| the same with the core's run-time `SchemeKind` and `StabilizerKind` | {k_flash} | {k_per:.2f} |",
         f"| C API − static Rust: what run-time choice costs | {c_flash - r_flash:+d} ({(c_flash / r_flash - 1) * 100:+.0f} %) "

@@ -2,7 +2,7 @@
 //! static types it stands for, one sample at a time and in bursts, refusals included.
 
 use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
-use quatprop::config::{AccumulatorKind, Config, Configured, InputKind};
+use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{FixedPeriod, TickClock};
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
@@ -84,6 +84,33 @@ fn rates<T: Real>() -> Vec<Vec3<T>> {
 }
 
 const DT: f64 = 2.5e-3;
+
+/// A burst through `Configured::visit_compact` (scheme matched per step), for the rates or the deltas.
+struct CompactBurst<'a, T> {
+    rates: &'a [GyroSample<T>],
+    deltas: &'a [DeltaAngle<T>],
+    period: &'a mut FixedPeriod<T>,
+}
+
+impl<T: Real> Visit<T> for CompactBurst<'_, T> {
+    type Output = Result<usize, Refused>;
+    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<T>,
+        I: InputModel<T, Sample = GyroSample<T>>,
+        A: Accumulator<T>,
+    {
+        p.push_burst(self.rates, self.period)
+    }
+    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<T>,
+        I: InputModel<T, Sample = DeltaAngle<T>>,
+        A: Accumulator<T>,
+    {
+        p.push_burst(self.deltas, self.period)
+    }
+}
 
 /// The static propagator a configuration stands for, fed one sample at a time: its attitude, counters and
 /// the refused indices. The scheme is the run-time `SchemeKind` (or Baumgarte on the static Runge–Kutta
@@ -201,6 +228,8 @@ fn check_every_config<T: Real>() {
         let mut period = FixedPeriod::<T>::new(DT).unwrap();
         let gyro: Vec<GyroSample<T>> = rates.iter().map(|&w| GyroSample::new(w)).collect();
         let deltas: Vec<DeltaAngle<T>> = rates.iter().map(|&w| DeltaAngle::new(w * dt)).collect();
+        let mut compact: Configured<T> = c.build(q0).unwrap();
+        let mut compact_period = FixedPeriod::<T>::new(DT).unwrap();
         let mut burst_refused = Vec::new();
         let mut at = 0;
         while at < rates.len() {
@@ -210,6 +239,12 @@ fn check_every_config<T: Real>() {
             } else {
                 b.push_burst(&gyro[at..end], &mut period)
             };
+            let rc = compact.visit_compact(CompactBurst {
+                rates: &gyro[at..end],
+                deltas: &deltas[at..end],
+                period: &mut compact_period,
+            });
+            assert_eq!((r, compact_period), (rc, period), "{c:?}: compact");
             match r {
                 Ok(n) => at += n,
                 Err(Refused { index, .. }) => {
@@ -236,6 +271,7 @@ fn check_every_config<T: Real>() {
             }
         }
         assert_eq!(s, b, "{c:?}: bursts differ from single pushes");
+        assert_eq!(compact, b, "{c:?}: visit_compact differs from visit");
         checked += 1;
     }
     // 3 exponential maps + 5 Runge–Kutta × 2 = 13 schemes × 11 inputs × 4 stabilizers × 3 accumulators.

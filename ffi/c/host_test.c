@@ -96,7 +96,7 @@ static void bad_configuration(void) {
     REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
     bad = c; bad.input = 6;
     REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
-    bad = c; bad.accumulator = 2;
+    bad = c; bad.accumulator = 3;
     REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
     bad = c; bad.input = QUATPROP_INPUT_DELTA_ANGLES; bad.coning = 6;
     REFUSED(&s, quatprop_init(&s, &bad), QUATPROP_BAD_ENUM);
@@ -218,7 +218,7 @@ static void delta_angles_and_kahan(void) {
     /* Every configuration initializes and integrates. */
     for (uint32_t in = 0; in <= QUATPROP_INPUT_DELTA_ANGLES; in++)
         for (uint32_t sc = 0; sc <= QUATPROP_SCHEME_CF4; sc++)
-            for (uint32_t acc = 0; acc <= QUATPROP_ACCUMULATOR_KAHAN; acc++) {
+            for (uint32_t acc = 0; acc <= QUATPROP_ACCUMULATOR_FLOAT_FLOAT; acc++) {
                 quatprop_config_t k = config(in);
                 k.scheme = sc;
                 k.accumulator = acc;

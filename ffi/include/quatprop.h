@@ -163,6 +163,12 @@
 #define QUATPROP_ACCUMULATOR_KAHAN 1
 
 /**
+ * Float-float attitude advanced by exact products: the float state's own error stays at its rounding
+ * over 10^8 steps (more instructions per step than KAHAN).
+ */
+#define QUATPROP_ACCUMULATOR_FLOAT_FLOAT 2
+
+/**
  * Axis remaps (`quatprop_set_axis_remap`): the signed sensor axis that becomes body x, y, z.
  * `PY_NX_PZ`: body x = +sensor y, body y = -sensor x, body z = +sensor z (sensor turned 90 deg about z).
  */

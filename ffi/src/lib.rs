@@ -32,7 +32,7 @@ mod tests;
 use core::mem::{align_of, size_of};
 use quatprop::frontend::{Alignment, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock};
 use quatprop::{DeltaAngle, Error, GyroSample, Quat};
-use state::{counts_sample, remap_of, vec3, Bias, Choice, Fail, Inner};
+use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 
 /// Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
 pub const QUATPROP_ABI_VERSION: u32 = 1;
@@ -140,6 +140,7 @@ fn status(f: Fail) -> quatprop_status_t {
             Error::InvalidClock => S::QUATPROP_INVALID_CLOCK,
             Error::InvalidEstimator => S::QUATPROP_INVALID_ESTIMATOR,
             Error::NonFiniteResult => S::QUATPROP_NON_FINITE_RESULT,
+            Error::WrongSampleKind => S::QUATPROP_WRONG_INPUT_KIND,
             _ => S::QUATPROP_UNKNOWN_ERROR,
         },
         Fail::BadEnum => S::QUATPROP_BAD_ENUM,
@@ -212,6 +213,9 @@ pub const QUATPROP_CONING_FIVE_SAMPLE: u32 = 5;
 pub const QUATPROP_ACCUMULATOR_PLAIN: u32 = 0;
 /// Kahan-compensated sum: a float state that tracks a double one over millions of steps.
 pub const QUATPROP_ACCUMULATOR_KAHAN: u32 = 1;
+/// Float-float attitude advanced by exact products: the float state's own error stays at its rounding
+/// over 10^8 steps (more instructions per step than KAHAN).
+pub const QUATPROP_ACCUMULATOR_FLOAT_FLOAT: u32 = 2;
 
 /// Axis remaps (`quatprop_set_axis_remap`): the signed sensor axis that becomes body x, y, z.
 /// `PY_NX_PZ`: body x = +sensor y, body y = -sensor x, body z = +sensor z (sensor turned 90 deg about z).
@@ -769,7 +773,7 @@ pub unsafe extern "C" fn quatprop_push_rate(
         saturated: v.saturated != 0,
     };
     // SAFETY: forwarded contract.
-    unsafe { with(s, |st| st.push_rate(g, dt)) }
+    unsafe { with(s, |st| one(st.rates(Rates::One(g), Time::Dt(dt)))) }
 }
 
 /// Pushes one sample of raw counts `counts[3]` (sensor axes: count scale, alignment and bias apply) taken
@@ -793,7 +797,7 @@ pub unsafe extern "C" fn quatprop_push_counts(
     unsafe {
         with(s, |st| {
             let scale = st.front.scale.ok_or(Fail::NotConfigured)?;
-            st.push_rate(counts_sample(&scale, c), dt)
+            one(st.rates(Rates::One(scale.sample(c)), Time::Dt(dt)))
         })
     }
 }
@@ -819,7 +823,12 @@ pub unsafe extern "C" fn quatprop_push_delta(
         saturated: v.saturated != 0,
     };
     // SAFETY: forwarded contract.
-    unsafe { with(s, |st| st.push_delta(d, dt)) }
+    unsafe { with(s, |st| one(st.deltas(Deltas::One(d), Time::Dt(dt)))) }
+}
+
+/// A one-sample loop's result as a call's.
+fn one(r: Result<usize, state::Refusal>) -> Result<(), Fail> {
+    r.map(|_| ()).map_err(|(_, f)| f)
 }
 
 /// Runs a burst and reports through `integrated`.
@@ -878,9 +887,7 @@ pub unsafe extern "C" fn quatprop_push_counts_burst(
             let Some(scale) = st.front.scale else {
                 return Err((0, Fail::NotConfigured));
             };
-            st.rate_burst(fifo.len(), |i| {
-                counts_sample(&scale, fifo.get(i).copied().unwrap_or_default())
-            })
+            st.rates(Rates::Counts(fifo, scale), Time::Period)
         })
     }
 }
@@ -917,10 +924,7 @@ pub unsafe extern "C" fn quatprop_push_counts_burst_timed(
             let Some(scale) = st.front.scale else {
                 return Err((0, Fail::NotConfigured));
             };
-            st.rate_burst_timed(n, |i| {
-                let c = fifo.get(i).copied().unwrap_or_default();
-                (counts_sample(&scale, c), times.get(i).copied().unwrap_or(0))
-            })
+            st.rates(Rates::Counts(fifo, scale), Time::Ticks(times))
         })
     }
 }
@@ -946,18 +950,7 @@ pub unsafe extern "C" fn quatprop_push_rate_burst(
     // SAFETY: forwarded contract.
     unsafe {
         burst(s, integrated, |st| {
-            st.rate_burst(fifo.len(), |i| {
-                let v = fifo.get(i).copied().unwrap_or(quatprop_sample_t {
-                    x: 0.0,
-                    y: 0.0,
-                    z: 0.0,
-                    saturated: 0,
-                });
-                GyroSample {
-                    rate: vec3([v.x, v.y, v.z]),
-                    saturated: v.saturated != 0,
-                }
-            })
+            st.rates(Rates::Samples(fifo), Time::Period)
         })
     }
 }
@@ -983,23 +976,7 @@ pub unsafe extern "C" fn quatprop_push_delta_burst(
     // SAFETY: forwarded contract.
     unsafe {
         burst(s, integrated, |st| {
-            // At most 32 converted at a time on the stack.
-            let mut done = 0;
-            for chunk in fifo.chunks(32) {
-                let mut buf = [DeltaAngle::<f32>::default(); 32];
-                for (d, v) in buf.iter_mut().zip(chunk) {
-                    *d = DeltaAngle {
-                        angle: vec3([v.x, v.y, v.z]),
-                        saturated: v.saturated != 0,
-                    };
-                }
-                let part = buf.get(..chunk.len()).unwrap_or(&[]);
-                match st.delta_burst(part) {
-                    Ok(k) => done += k,
-                    Err((i, f)) => return Err((done + i, f)),
-                }
-            }
-            Ok(done)
+            st.deltas(Deltas::Samples(fifo), Time::Period)
         })
     }
 }

@@ -1,63 +1,26 @@
 //! The Rust side of the C state: safe code only. `lib.rs` turns C pointers into references and calls these.
 //!
-//! The input model and the accumulator are type parameters of [`Propagator`]; C picks them at run time, so
-//! [`Prop`] holds one propagator per input model × accumulator, each with the core's run-time
-//! [`SchemeKind`], [`StabilizerKind`] (and [`ConingKind`] for delta angles). A burst matches on the variant
-//! once and then runs a loop monomorphized for it; the scheme and stabilizer are matched per step, as in the
-//! core's own run-time dispatch.
+//! The propagator is the core's run-time configuration ([`Configured`], built from a [`Config`]): each call
+//! matches the configuration once and runs a loop compiled for it. The C layer adds its front end (count
+//! scale, alignment, bias) per sample inside that loop, through [`Visit`]: one rate loop ([`RateLoop`]) and
+//! one delta-angle loop ([`DeltaLoop`]) serve every call, single samples and bursts alike.
+//!
+//! By default the loops are compiled per input model × accumulator, with the scheme and the stabilizer
+//! matched per step ([`Configured::visit_compact`]: small flash); with the feature `monomorphized`, per
+//! scheme × input model × accumulator ([`Configured::visit`]: fewer instructions, far more flash).
+//! docs/c-api.md measures both.
 
-use quatprop::accumulate::{Kahan, Plain};
+use crate::quatprop_sample_t;
+use quatprop::accumulate::Accumulator;
+use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
     Alignment, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
 };
 use quatprop::input::coning::ConingKind;
-use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use quatprop::scheme::SchemeKind;
+use quatprop::input::InputModel;
+use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::StabilizerKind;
 use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Vec3};
-
-/// One propagator configuration with the run-time scheme and stabilizer.
-pub type P<I, A> = Propagator<f32, SchemeKind, I, StabilizerKind, A>;
-
-/// The rate input models (one `GyroSample` per push).
-#[derive(Clone, Copy)]
-pub enum Prop {
-    HoldPlain(P<Hold, Plain>),
-    HoldKahan(P<Hold, Kahan<f32>>),
-    LinearPlain(P<Linear<f32>, Plain>),
-    LinearKahan(P<Linear<f32>, Kahan<f32>>),
-    HistoryPlain(P<History<f32>, Plain>),
-    HistoryKahan(P<History<f32>, Kahan<f32>>),
-    TwiceRatePlain(P<TwiceRate<f32>, Plain>),
-    TwiceRateKahan(P<TwiceRate<f32>, Kahan<f32>>),
-    GaussPointsPlain(P<GaussPoints<f32>, Plain>),
-    GaussPointsKahan(P<GaussPoints<f32>, Kahan<f32>>),
-    DeltaPlain(P<DeltaAngles<f32, ConingKind>, Plain>),
-    DeltaKahan(P<DeltaAngles<f32, ConingKind>, Kahan<f32>>),
-}
-
-/// `dispatch!(prop, rate p => e1, delta d => e2)`: `e1` for the rate models, `e2` for delta angles.
-macro_rules! dispatch {
-    ($prop:expr, rate $p:ident => $r:expr, delta $d:ident => $e:expr) => {
-        match $prop {
-            Prop::HoldPlain($p) => $r,
-            Prop::HoldKahan($p) => $r,
-            Prop::LinearPlain($p) => $r,
-            Prop::LinearKahan($p) => $r,
-            Prop::HistoryPlain($p) => $r,
-            Prop::HistoryKahan($p) => $r,
-            Prop::TwiceRatePlain($p) => $r,
-            Prop::TwiceRateKahan($p) => $r,
-            Prop::GaussPointsPlain($p) => $r,
-            Prop::GaussPointsKahan($p) => $r,
-            Prop::DeltaPlain($d) => $e,
-            Prop::DeltaKahan($d) => $e,
-        }
-    };
-    ($prop:expr, any $p:ident => $r:expr) => {
-        dispatch!($prop, rate $p => $r, delta $p => $r)
-    };
-}
 
 /// Why a call failed: a core error, or one of the C boundary's own.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,6 +83,20 @@ impl FrontEnd {
         clock: None,
     };
 
+    /// Rate sample `i` of `rates` through the alignment and `bias` (the front end's, or a copy). Not
+    /// generic: one copy for every configuration.
+    // Out of line when every scheme has its loops (flash); inlined into the compact build's few loops.
+    #[cfg_attr(feature = "monomorphized", inline(never))]
+    #[cfg_attr(not(feature = "monomorphized"), inline(always))]
+    fn sample(
+        &self,
+        rates: &Rates<'_>,
+        i: usize,
+        bias: &mut Bias,
+    ) -> Result<GyroSample<f32>, Error> {
+        bias.apply(self.align(rates.get(i)))
+    }
+
     #[inline(always)]
     fn align(&self, s: GyroSample<f32>) -> GyroSample<f32> {
         match &self.alignment {
@@ -132,11 +109,11 @@ impl FrontEnd {
 /// Everything a `quatprop_t` holds.
 #[derive(Clone, Copy)]
 pub struct Inner {
-    pub prop: Prop,
+    pub prop: Configured<f32>,
     pub front: FrontEnd,
 }
 
-/// What C chose in `quatprop_config_t`, validated.
+/// What C chose in `quatprop_config_t`.
 pub struct Choice {
     pub q0: Quat<f32>,
     pub scheme: u32,
@@ -147,185 +124,355 @@ pub struct Choice {
     pub accumulator: u32,
 }
 
-fn scheme_of(v: u32) -> Result<SchemeKind, Fail> {
-    SchemeKind::ALL
-        .get(v as usize)
-        .copied()
-        .ok_or(Fail::BadEnum)
+/// `ALL[v]`, or `BadEnum`.
+fn nth<K: Copy>(all: &[K], v: u32) -> Result<K, Fail> {
+    all.get(v as usize).copied().ok_or(Fail::BadEnum)
 }
 
-fn stabilizer_of(v: u32, every: u32) -> Result<StabilizerKind, Fail> {
-    match v {
-        0 => Ok(StabilizerKind::Off),
-        1 => Ok(StabilizerKind::Normalize),
-        2 => Ok(StabilizerKind::FirstOrder),
-        3 => Ok(StabilizerKind::Every(every)),
-        _ => Err(Fail::BadEnum),
+impl Choice {
+    /// The core's configuration, the C values in the order of the header's constants.
+    fn config(&self) -> Result<Config, Fail> {
+        Ok(Config {
+            scheme: nth(&SchemeKind::ALL, self.scheme)?,
+            baumgarte_gain: None,
+            input: match self.input {
+                0 => InputKind::Hold,
+                1 => InputKind::Linear,
+                2 => InputKind::History,
+                3 => InputKind::TwiceRate,
+                4 => InputKind::GaussPoints,
+                5 => InputKind::DeltaAngles(nth(&ConingKind::ALL, self.coning)?),
+                _ => return Err(Fail::BadEnum),
+            },
+            stabilizer: match self.stabilizer {
+                0 => StabilizerKind::Off,
+                1 => StabilizerKind::Normalize,
+                2 => StabilizerKind::FirstOrder,
+                3 => StabilizerKind::Every(self.every),
+                _ => return Err(Fail::BadEnum),
+            },
+            accumulator: nth(
+                &[
+                    AccumulatorKind::Plain,
+                    AccumulatorKind::Kahan,
+                    AccumulatorKind::FloatFloat,
+                ],
+                self.accumulator,
+            )?,
+        })
     }
 }
 
 /// The axis remap with C value `v` (the order of [`AxisRemap::ALL`]).
 pub fn remap_of(v: u32) -> Result<AxisRemap, Fail> {
-    AxisRemap::ALL.get(v as usize).copied().ok_or(Fail::BadEnum)
+    nth(&AxisRemap::ALL, v)
 }
 
-fn build<I: InputModel<f32>>(
-    c: &Choice,
-    input: I,
-    plain: fn(P<I, Plain>) -> Prop,
-    kahan: fn(P<I, Kahan<f32>>) -> Prop,
-) -> Result<Prop, Fail> {
-    let scheme = scheme_of(c.scheme)?;
-    let stabilizer = stabilizer_of(c.stabilizer, c.every)?;
-    let p = Propagator::new(c.q0, scheme, input, stabilizer)?;
-    match c.accumulator {
-        0 => Ok(plain(p)),
-        1 => Ok(kahan(p.with_accumulator(Kahan::new()))),
-        _ => Err(Fail::BadEnum),
+/// Where a rate loop's samples come from.
+#[derive(Clone, Copy)]
+pub enum Rates<'a> {
+    /// One sample (rad/s, sensor axes).
+    One(GyroSample<f32>),
+    /// Raw counts, scaled by the front end's count scale.
+    Counts(&'a [[i16; 3]], CountScale<f32>),
+    /// C samples (rad/s, sensor axes).
+    Samples(&'a [quatprop_sample_t]),
+}
+
+impl Rates<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Rates::One(_) => 1,
+            Rates::Counts(c, _) => c.len(),
+            Rates::Samples(s) => s.len(),
+        }
+    }
+    #[inline(always)]
+    fn get(&self, i: usize) -> GyroSample<f32> {
+        match self {
+            Rates::One(s) => *s,
+            Rates::Counts(c, scale) => scale.sample(c.get(i).copied().unwrap_or_default()),
+            Rates::Samples(s) => s.get(i).map_or(GyroSample::default(), |v| GyroSample {
+                rate: vec3([v.x, v.y, v.z]),
+                saturated: v.saturated != 0,
+            }),
+        }
+    }
+}
+
+/// Where a loop's `dt`s come from.
+#[derive(Clone, Copy)]
+pub enum Time<'a> {
+    /// One given `dt` (s): single samples.
+    Dt(f32),
+    /// The front end's fixed period.
+    Period,
+    /// The front end's tick clock, one timestamp per sample.
+    Ticks(&'a [u32]),
+}
+
+/// A [`Time`] with the front end's period or clock taken out for the loop (and put back after it).
+#[derive(Clone, Copy)]
+enum Timing<'a> {
+    Dt(f32),
+    Period(FixedPeriod<f32>),
+    Ticks(TickClock<f32>, &'a [u32]),
+}
+
+impl<'a> Timing<'a> {
+    /// The timing `time` asks for, or `NotConfigured` before any sample.
+    fn of(time: Time<'a>, front: &FrontEnd) -> Result<Self, Refusal> {
+        let missing = (0, Fail::NotConfigured);
+        Ok(match time {
+            Time::Dt(dt) => Timing::Dt(dt),
+            Time::Period => Timing::Period(front.period.ok_or(missing)?),
+            Time::Ticks(t) => Timing::Ticks(front.clock.ok_or(missing)?, t),
+        })
+    }
+
+    /// Puts the period or clock back into the front end.
+    fn restore(self, front: &mut FrontEnd) {
+        match self {
+            Timing::Dt(_) => {}
+            Timing::Period(p) => front.period = Some(p),
+            Timing::Ticks(c, _) => front.clock = Some(c),
+        }
+    }
+
+    /// Sample `i`'s interval: `Some(dt)`, or `None` for the first timestamp of a clock (it starts the
+    /// stream). Not generic: one copy for every configuration.
+    // Out of line when every scheme has its loops (flash); inlined into the compact build's few loops.
+    #[cfg_attr(feature = "monomorphized", inline(never))]
+    #[cfg_attr(not(feature = "monomorphized"), inline(always))]
+    fn interval(&mut self, i: usize) -> Result<Option<f32>, Error> {
+        match self {
+            Timing::Dt(dt) => Ok(Some(*dt)),
+            Timing::Period(period) => Ok(Some(period.next_dt())),
+            Timing::Ticks(clock, t) => {
+                let (next, dt) = clock.advance(t.get(i).copied().unwrap_or(0))?;
+                // Committed by `accepted`, dropped by `refused`.
+                *clock = next;
+                Ok(dt)
+            }
+        }
+    }
+
+    /// Sample `i` was refused after `interval` gave `dt`: a period keeps the interval (the next sample's
+    /// `dt` covers it), a clock goes back to `before`.
+    #[cold]
+    #[inline(never)]
+    fn refused(&mut self, dt: Option<f32>, before: Self) {
+        match self {
+            Timing::Dt(_) => {}
+            Timing::Period(period) => {
+                if let Some(dt) = dt {
+                    period.carry_over(dt);
+                }
+            }
+            Timing::Ticks(..) => *self = before,
+        }
+    }
+
+    /// Pushes sample `i`, made by `sample` (the front end), with its interval from the time base. The time
+    /// base goes first, as in the core's bursts; on a refusal (of the time, the front end or the
+    /// propagator) a period keeps the interval and a clock stays where it was. One push site per
+    /// configuration.
+    #[inline(always)]
+    fn push<S, I, A>(
+        &mut self,
+        p: &mut Propagator<f32, S, I, StabilizerKind, A>,
+        i: usize,
+        sample: impl FnOnce() -> Result<I::Sample, Error>,
+    ) -> Result<(), Error>
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32>,
+        A: Accumulator<f32>,
+    {
+        let before = *self;
+        let dt = self.interval(i)?;
+        let pushed = sample().and_then(|s| match dt {
+            Some(dt) => p.push(s, dt),
+            None => p.start(s),
+        });
+        if pushed.is_err() {
+            self.refused(dt, before);
+        }
+        pushed
+    }
+}
+
+/// The rate loop: per sample, the alignment and the bias (on a copy), its `dt`, the push; on a refusal it
+/// stops, the time base and the bias stage as after the last accepted sample (a period keeps the refused
+/// interval, as the core's `push_burst` does).
+pub struct RateLoop<'a> {
+    rates: Rates<'a>,
+    time: Timing<'a>,
+    front: &'a mut FrontEnd,
+}
+
+impl Visit<f32> for RateLoop<'_> {
+    type Output = Result<usize, Refusal>;
+    #[inline(always)]
+    fn rates<S, I, A>(mut self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = GyroSample<f32>>,
+        A: Accumulator<f32>,
+    {
+        let n = self.rates.len();
+        let mut result = Ok(n);
+        for i in 0..n {
+            let mut bias = self.front.bias;
+            let front = &*self.front;
+            let rates = &self.rates;
+            let pushed = self.time.push(p, i, || front.sample(rates, i, &mut bias));
+            if let Err(e) = pushed {
+                result = Err((i, Fail::Core(e)));
+                break;
+            }
+            self.front.bias = bias;
+        }
+        self.time.restore(self.front);
+        result
+    }
+    fn deltas<S, I, A>(self, _: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = DeltaAngle<f32>>,
+        A: Accumulator<f32>,
+    {
+        Err((0, Fail::WrongInputKind))
+    }
+}
+
+/// Where a delta-angle loop's samples come from.
+#[derive(Clone, Copy)]
+pub enum Deltas<'a> {
+    /// One increment (rad, sensor axes).
+    One(DeltaAngle<f32>),
+    /// C samples (rad, sensor axes).
+    Samples(&'a [quatprop_sample_t]),
+}
+
+/// The delta-angle loop: the alignment per sample (the bias does not apply: it is a rate), then its `dt`
+/// and the push, as the rate loop.
+pub struct DeltaLoop<'a> {
+    deltas: Deltas<'a>,
+    time: Timing<'a>,
+    front: &'a mut FrontEnd,
+}
+
+impl Visit<f32> for DeltaLoop<'_> {
+    type Output = Result<usize, Refusal>;
+    fn rates<S, I, A>(self, _: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = GyroSample<f32>>,
+        A: Accumulator<f32>,
+    {
+        Err((0, Fail::WrongInputKind))
+    }
+    #[inline(always)]
+    fn deltas<S, I, A>(mut self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = DeltaAngle<f32>>,
+        A: Accumulator<f32>,
+    {
+        let n = match self.deltas {
+            Deltas::One(_) => 1,
+            Deltas::Samples(s) => s.len(),
+        };
+        let mut result = Ok(n);
+        for i in 0..n {
+            let d = match self.deltas {
+                Deltas::One(d) => d,
+                Deltas::Samples(s) => s.get(i).map_or(DeltaAngle::default(), |v| DeltaAngle {
+                    angle: vec3([v.x, v.y, v.z]),
+                    saturated: v.saturated != 0,
+                }),
+            };
+            let front = &*self.front;
+            if let Err(e) = self.time.push(p, i, || Ok(align_delta(front, d))) {
+                result = Err((i, Fail::Core(e)));
+                break;
+            }
+        }
+        self.time.restore(self.front);
+        result
+    }
+}
+
+/// Runs `v` on the propagator, compiled as the crate's features choose (see the module's documentation).
+#[inline(always)]
+fn visit<V: Visit<f32>>(prop: &mut Configured<f32>, v: V) -> V::Output {
+    #[cfg(feature = "monomorphized")]
+    {
+        prop.visit(v)
+    }
+    #[cfg(not(feature = "monomorphized"))]
+    {
+        prop.visit_compact(v)
     }
 }
 
 impl Inner {
     /// A propagator as chosen, with an empty front end (no scale, identity alignment, no bias, no time base).
     pub fn new(c: &Choice) -> Result<Self, Fail> {
-        let prop = match c.input {
-            0 => build(c, Hold, Prop::HoldPlain, Prop::HoldKahan),
-            1 => build(c, Linear::new(), Prop::LinearPlain, Prop::LinearKahan),
-            2 => build(c, History::new(), Prop::HistoryPlain, Prop::HistoryKahan),
-            3 => build(
-                c,
-                TwiceRate::new(),
-                Prop::TwiceRatePlain,
-                Prop::TwiceRateKahan,
-            ),
-            4 => build(
-                c,
-                GaussPoints::new(),
-                Prop::GaussPointsPlain,
-                Prop::GaussPointsKahan,
-            ),
-            5 => {
-                let coning = ConingKind::ALL
-                    .get(c.coning as usize)
-                    .copied()
-                    .ok_or(Fail::BadEnum)?;
-                build(
-                    c,
-                    DeltaAngles::new(coning),
-                    Prop::DeltaPlain,
-                    Prop::DeltaKahan,
-                )
-            }
-            _ => Err(Fail::BadEnum),
-        }?;
         Ok(Self {
-            prop,
+            prop: c.config()?.build(c.q0)?,
             front: FrontEnd::NONE,
         })
     }
 
     pub fn attitude(&self) -> Quat<f32> {
-        dispatch!(&self.prop, any p => p.attitude())
+        self.prop.attitude()
     }
 
     pub fn norm_error(&self) -> f32 {
-        dispatch!(&self.prop, any p => p.norm_error())
+        self.prop.norm_error()
     }
 
     /// Steps, corrections, saturated samples.
     pub fn counters(&self) -> (u64, u64, u64) {
-        dispatch!(&self.prop, any p => (p.steps(), p.corrections(), p.saturated_samples()))
+        let p = &self.prop;
+        (p.steps(), p.corrections(), p.saturated_samples())
     }
 
     pub fn set_attitude(&mut self, q: Quat<f32>) -> Result<(), Fail> {
-        dispatch!(&mut self.prop, any p => p.set_attitude(q).map_err(Fail::Core))
+        Ok(self.prop.set_attitude(q)?)
     }
 
     pub fn restart_input(&mut self) {
-        dispatch!(&mut self.prop, any p => p.restart_input())
+        self.prop.restart_input();
     }
 
-    /// One rate sample (rad/s, sensor axes) through alignment and bias, `dt` after the previous one.
-    /// All or nothing: on error nothing changes.
-    pub fn push_rate(&mut self, s: GyroSample<f32>, dt: f32) -> Result<(), Fail> {
-        let front = &mut self.front;
-        dispatch!(&mut self.prop,
-            rate p => {
-                let mut bias = front.bias;
-                let s = bias.apply(front.align(s))?;
-                p.push(s, dt)?;
-                front.bias = bias;
-                Ok(())
+    /// Rate samples through the front end, timed by `time`: stops at the first refusal (its index and why).
+    /// A burst that needs a time base the front end lacks is refused before any sample.
+    pub fn rates(&mut self, rates: Rates<'_>, time: Time<'_>) -> Result<usize, Refusal> {
+        let time = Timing::of(time, &self.front)?;
+        visit(
+            &mut self.prop,
+            RateLoop {
+                rates,
+                time,
+                front: &mut self.front,
             },
-            delta _d => Err(Fail::WrongInputKind))
+        )
     }
 
-    /// One delta-angle sample (rad, sensor axes) through the alignment. All or nothing.
-    pub fn push_delta(&mut self, d: DeltaAngle<f32>, dt: f32) -> Result<(), Fail> {
-        let d = align_delta(&self.front, d);
-        dispatch!(&mut self.prop,
-            rate _p => Err(Fail::WrongInputKind),
-            delta p => p.push(d, dt).map_err(Fail::Core))
-    }
-
-    /// A burst of rate samples produced by `sample(i)`, `i < n`, timed by the fixed period.
-    #[inline(always)]
-    pub fn rate_burst<F: Fn(usize) -> GyroSample<f32>>(
-        &mut self,
-        n: usize,
-        sample: F,
-    ) -> Result<usize, Refusal> {
-        let Some(mut period) = self.front.period else {
-            return Err((0, Fail::NotConfigured));
-        };
-        let front = &mut self.front;
-        let r = dispatch!(&mut self.prop,
-            rate p => rate_loop(p, front, &mut period, n, sample),
-            delta _d => Err((0, Fail::WrongInputKind)));
-        front.period = Some(period);
-        r
-    }
-
-    /// A burst of rate samples with the sensor's timestamps (ticks of the tick clock).
-    #[inline(always)]
-    pub fn rate_burst_timed<F: Fn(usize) -> (GyroSample<f32>, u32)>(
-        &mut self,
-        n: usize,
-        sample: F,
-    ) -> Result<usize, Refusal> {
-        let Some(mut clock) = self.front.clock else {
-            return Err((0, Fail::NotConfigured));
-        };
-        let front = &mut self.front;
-        let r = dispatch!(&mut self.prop,
-            rate p => timed_loop(p, front, &mut clock, n, sample),
-            delta _d => Err((0, Fail::WrongInputKind)));
-        front.clock = Some(clock);
-        r
-    }
-
-    /// A burst of delta angles timed by the fixed period.
-    pub fn delta_burst(&mut self, samples: &[DeltaAngle<f32>]) -> Result<usize, Refusal> {
-        let Some(mut period) = self.front.period else {
-            return Err((0, Fail::NotConfigured));
-        };
-        let front = self.front;
-        let r = dispatch!(&mut self.prop,
-        rate _p => Err((0, Fail::WrongInputKind)),
-        delta p => {
-            let mut r = Ok(samples.len());
-            for (i, d) in samples.iter().enumerate() {
-                let dt = period.next_dt();
-                if let Err(e) = p.push(align_delta(&front, *d), dt) {
-                    period.carry_over(dt);
-                    r = Err((i, Fail::Core(e)));
-                    break;
-                }
-            }
-            r
-        });
-        self.front.period = Some(period);
-        r
+    /// Delta angles through the alignment, timed by `time` (a given `dt` or the fixed period).
+    pub fn deltas(&mut self, deltas: Deltas<'_>, time: Time<'_>) -> Result<usize, Refusal> {
+        let time = Timing::of(time, &self.front)?;
+        visit(
+            &mut self.prop,
+            DeltaLoop {
+                deltas,
+                time,
+                front: &mut self.front,
+            },
+        )
     }
 }
 
@@ -339,81 +486,6 @@ fn align_delta(front: &FrontEnd, d: DeltaAngle<f32>) -> DeltaAngle<f32> {
         angle: g.rate,
         saturated: g.saturated,
     }
-}
-
-/// The burst loop, monomorphized per input model × accumulator. Per sample: the next period, the front end
-/// (bias on a copy), the push; on a refusal the interval is carried over and the bias stage stays as it was
-/// after the last accepted sample (the core's `push_burst` semantics).
-#[inline(always)]
-fn rate_loop<I, A, F>(
-    p: &mut P<I, A>,
-    front: &mut FrontEnd,
-    period: &mut FixedPeriod<f32>,
-    n: usize,
-    sample: F,
-) -> Result<usize, Refusal>
-where
-    I: InputModel<f32, Sample = GyroSample<f32>>,
-    A: quatprop::accumulate::Accumulator<f32>,
-    F: Fn(usize) -> GyroSample<f32>,
-{
-    for i in 0..n {
-        let dt = period.next_dt();
-        let mut bias = front.bias;
-        let pushed = bias
-            .apply(front.align(sample(i)))
-            .and_then(|s| p.push(s, dt));
-        if let Err(e) = pushed {
-            period.carry_over(dt);
-            return Err((i, Fail::Core(e)));
-        }
-        front.bias = bias;
-    }
-    Ok(n)
-}
-
-/// The timed burst loop: the clock's first timestamp starts the input model (the core's
-/// `push_burst_timed` semantics); on a refusal the clock and the bias stay as after the last accepted sample.
-#[inline(always)]
-fn timed_loop<I, A, F>(
-    p: &mut P<I, A>,
-    front: &mut FrontEnd,
-    clock: &mut TickClock<f32>,
-    n: usize,
-    sample: F,
-) -> Result<usize, Refusal>
-where
-    I: InputModel<f32, Sample = GyroSample<f32>>,
-    A: quatprop::accumulate::Accumulator<f32>,
-    F: Fn(usize) -> (GyroSample<f32>, u32),
-{
-    for i in 0..n {
-        let (raw, timestamp) = sample(i);
-        let mut bias = front.bias;
-        let step = |bias: &mut Bias, p: &mut P<I, A>| -> Result<TickClock<f32>, Error> {
-            let (next, dt) = clock.advance(timestamp)?;
-            let s = bias.apply(front.align(raw))?;
-            match dt {
-                Some(dt) => p.push(s, dt)?,
-                None => p.start(s)?,
-            }
-            Ok(next)
-        };
-        match step(&mut bias, p) {
-            Ok(next) => {
-                *clock = next;
-                front.bias = bias;
-            }
-            Err(e) => return Err((i, Fail::Core(e))),
-        }
-    }
-    Ok(n)
-}
-
-/// Counts to rad/s with the front end's scale (checked by the caller).
-#[inline(always)]
-pub fn counts_sample(scale: &CountScale<f32>, c: [i16; 3]) -> GyroSample<f32> {
-    scale.sample(c)
 }
 
 /// A `Vec3` from C's three floats.
