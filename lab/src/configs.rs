@@ -1,8 +1,9 @@
 //! The configurations the studies compare, and one integrator type that runs any of them over a sample stream.
 //!
-//! A configuration is either quatprop (scheme × stabilizer × input model × accumulator) or a peer. Every
-//! quatprop configuration is monomorphized (the scheme, input-model and stabilizer types a firmware would
-//! name), so host timings are those of the code a user links, not of an enum dispatch. Baumgarte is, since
+//! A configuration is either quatprop (scheme × stabilizer × input model × accumulator) or a peer. A
+//! quatprop configuration is the library's run-time `config::Config`; its loop is compiled for the scheme,
+//! input model and accumulator types a firmware would name (`Configured::visit`), with the library's
+//! run-time `StabilizerKind`, so host timings are those of the code a user links. Baumgarte is, since
 //! quatprop 0.2, a right-hand-side option of the Runge–Kutta schemes (`scheme::Baumgarte` with `stabilize::Off`):
 //! a Baumgarte configuration of an exponential-map scheme does not exist and is not built. Peers that exist as Rust
 //! crates are used as crates (`ahrs`, `nalgebra`, `glam`); Fusion (C) is implemented from its published
@@ -13,13 +14,12 @@
 //! its first error: nothing is dropped silently.
 
 use crate::peers;
-use quatprop::accumulate::{Accumulator, FloatFloat, Kahan};
-use quatprop::input::{History, Hold, InputModel, Linear, TwiceRate};
-use quatprop::scheme::{
-    Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
-};
-use quatprop::stabilize::{Every, FirstOrder, Normalize, Off, Stabilizer};
-use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
+use quatprop::accumulate::Accumulator;
+use quatprop::config::{AccumulatorKind, Config as LibConfig, Configured, InputKind, Visit};
+use quatprop::input::InputModel;
+use quatprop::scheme::{Scheme, SchemeKind};
+use quatprop::stabilize::StabilizerKind;
+use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Vec3};
 
 /// A scheme's short name (`"Rk4"`), from the library's record.
 pub fn scheme_name(m: SchemeKind) -> &'static str {
@@ -305,79 +305,116 @@ impl LabReal for f64 {
 
 // ------------------------------------------------------------------------------------------------ quatprop
 
-/// The lab's four input models as the library's types, with how the lab feeds them a stream.
-trait LabInput<T: Real>: InputModel<T, Sample = GyroSample<T>> + 'static {
-    /// The model before any sample.
-    fn fresh() -> Self;
+/// The library's run-time configuration for a lab configuration (Baumgarte: the gain on a Runge–Kutta
+/// scheme, with no post-step stabilizer).
+fn library_config(method: SchemeKind, stab: Stab, input: Input, accumulator: Acc) -> LibConfig {
+    let (stabilizer, baumgarte_gain) = match stab {
+        Stab::Off => (StabilizerKind::Off, None),
+        Stab::Normalize => (StabilizerKind::Normalize, None),
+        Stab::FirstOrder => (StabilizerKind::FirstOrder, None),
+        Stab::Every(n) => (StabilizerKind::Every(n), None),
+        Stab::Baumgarte(k) => (StabilizerKind::Off, Some(k)),
+    };
+    LibConfig {
+        scheme: method,
+        baumgarte_gain,
+        input: match input {
+            Input::Hold => InputKind::Hold,
+            Input::Linear => InputKind::Linear,
+            Input::History => InputKind::History,
+            Input::Mid => InputKind::TwiceRate,
+        },
+        stabilizer,
+        accumulator: match accumulator {
+            Acc::Plain => AccumulatorKind::Plain,
+            Acc::Kahan => AccumulatorKind::Kahan,
+            Acc::FloatFloat => AccumulatorKind::FloatFloat,
+        },
+    }
+}
+
+/// A quatprop configuration over a stream: the library's [`Configured`] propagator, fed by [`Feed`].
+struct QuatpropRun<T: Real> {
+    p: Configured<T>,
     /// After a refused step the stream continues from the refused sample (the interval is dropped and
-    /// counted, the lab's policy since 0.1): the sample starts the model afresh (`Propagator::start`). The
-    /// library leaves a refused sample's model untouched, which for [`Linear`] and [`TwiceRate`] would make
-    /// the next step span the refused interval too. [`History`] keeps its 0.1 behaviour unchanged (the
+    /// counted, the lab's policy since 0.1): for `Linear` and `TwiceRate` the sample starts the model
+    /// afresh (`Propagator::start`), since the library leaves a refused sample's model untouched, which
+    /// would make the next step span the refused interval too. `History` keeps its 0.1 behaviour (the
     /// refused sample is not part of the history).
-    const RESTART_ON_REFUSAL: bool = false;
-}
-
-impl<T: Real> LabInput<T> for Hold {
-    fn fresh() -> Self {
-        Hold
-    }
-}
-impl<T: Real> LabInput<T> for Linear<T> {
-    fn fresh() -> Self {
-        Linear::new()
-    }
-    const RESTART_ON_REFUSAL: bool = true;
-}
-impl<T: Real> LabInput<T> for History<T> {
-    fn fresh() -> Self {
-        History::new()
-    }
-}
-impl<T: Real> LabInput<T> for TwiceRate<T> {
-    fn fresh() -> Self {
-        TwiceRate::new()
-    }
-    const RESTART_ON_REFUSAL: bool = true;
-}
-
-struct QuatpropRun<T: Real, S: Scheme<T>, I: LabInput<T>, Z: Stabilizer, A: Accumulator<T>> {
-    p: Propagator<T, S, I, Z, A>,
+    restart_on_refusal: bool,
     /// The first sample of the stream has been seen.
     started: bool,
     refused: u64,
     first_error: Option<Error>,
 }
 
-impl<T: Real, S: Scheme<T>, I: LabInput<T>, Z: Stabilizer, A: Accumulator<T>> Integrator<T>
-    for QuatpropRun<T, S, I, Z, A>
-{
-    fn feed(&mut self, samples: &[Sample<T>]) {
-        // The propagator (its input model included) lives in a local during the loop (as it would in a
-        // firmware's interrupt handler) and is written back once.
-        let mut p = self.p;
-        let (mut refused, mut first) = (0u64, None);
-        let mut rest = samples;
-        if !self.started {
-            if let Some((s0, tail)) = samples.split_first() {
-                self.started = true;
+/// One [`Integrator::feed`] as a [`Visit`]: the loop is compiled for each scheme × input model ×
+/// accumulator, and the propagator (its input model included) lives in a local during the loop, as it
+/// would in a firmware's interrupt handler.
+struct Feed<'a, T> {
+    samples: &'a [Sample<T>],
+    start_first: bool,
+    restart_on_refusal: bool,
+    refused: &'a mut u64,
+    first: &'a mut Option<Error>,
+}
+
+impl<T: Real> Visit<T> for Feed<'_, T> {
+    type Output = ();
+    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>)
+    where
+        S: Scheme<T>,
+        I: InputModel<T, Sample = GyroSample<T>>,
+        A: Accumulator<T>,
+    {
+        let mut local = *p;
+        let mut rest = self.samples;
+        if self.start_first {
+            if let Some((s0, tail)) = rest.split_first() {
                 rest = tail;
                 // The stream's first sample has no interval before it (its dt is meaningless, 0 in sensor
                 // streams): it only starts the model (Hold keeps nothing of it).
-                if let Err(e) = p.start(GyroSample::new(s0.w)) {
-                    refuse(&mut refused, &mut first, e);
+                if let Err(e) = local.start(GyroSample::new(s0.w)) {
+                    refuse(self.refused, self.first, e);
                 }
             }
         }
         for s in rest {
-            if let Err(e) = p.push(GyroSample::new(s.w), s.dt) {
+            if let Err(e) = local.push(GyroSample::new(s.w), s.dt) {
                 // Cold: only refused steps reach the body.
-                refuse(&mut refused, &mut first, e);
-                if I::RESTART_ON_REFUSAL {
-                    let _ = p.start(GyroSample::new(s.w));
+                refuse(self.refused, self.first, e);
+                if self.restart_on_refusal {
+                    let _ = local.start(GyroSample::new(s.w));
                 }
             }
         }
-        self.p = p;
+        *p = local;
+    }
+    fn deltas<S, I, A>(self, _: &mut Propagator<T, S, I, StabilizerKind, A>)
+    where
+        S: Scheme<T>,
+        I: InputModel<T, Sample = DeltaAngle<T>>,
+        A: Accumulator<T>,
+    {
+        // The lab's streams are rates; no lab configuration takes delta angles.
+        for _ in self.samples {
+            refuse(self.refused, self.first, Error::WrongSampleKind);
+        }
+    }
+}
+
+impl<T: Real> Integrator<T> for QuatpropRun<T> {
+    fn feed(&mut self, samples: &[Sample<T>]) {
+        let (mut refused, mut first) = (0u64, None);
+        let start_first = !self.started && !samples.is_empty();
+        self.started |= start_first;
+        self.p.visit(Feed {
+            samples,
+            start_first,
+            restart_on_refusal: self.restart_on_refusal,
+            refused: &mut refused,
+            first: &mut first,
+        });
         self.refused += refused;
         if self.first_error.is_none() {
             self.first_error = first;
@@ -398,33 +435,6 @@ fn refuse(count: &mut u64, first: &mut Option<Error>, e: Error) {
     first.get_or_insert(e);
 }
 
-fn boxed<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'static>(
-    q0: Quat<T>,
-    s: S,
-    z: Z,
-    accumulator: Acc,
-) -> Result<Box<dyn Integrator<T>>, Error> {
-    fn run<T: Real, S: Scheme<T> + 'static, I: LabInput<T>, Z: Stabilizer + 'static, A>(
-        p: Propagator<T, S, I, Z, A>,
-    ) -> Box<dyn Integrator<T>>
-    where
-        A: Accumulator<T> + 'static,
-    {
-        Box::new(QuatpropRun {
-            p,
-            started: false,
-            refused: 0,
-            first_error: None,
-        })
-    }
-    let p = Propagator::new(q0, s, I::fresh(), z)?;
-    Ok(match accumulator {
-        Acc::Plain => run(p),
-        Acc::Kahan => run(p.with_accumulator(Kahan::new())),
-        Acc::FloatFloat => run(p.with_accumulator(FloatFloat::new())),
-    })
-}
-
 fn build_quatprop<T: Real>(
     method: SchemeKind,
     stab: Stab,
@@ -432,54 +442,17 @@ fn build_quatprop<T: Real>(
     accumulator: Acc,
     q0: Quat<T>,
 ) -> Result<Box<dyn Integrator<T>>, String> {
-    macro_rules! with_input {
-        ($s:expr, $z:expr) => {
-            match input {
-                Input::Hold => boxed::<T, _, Hold, _>(q0, $s, $z, accumulator),
-                Input::Linear => boxed::<T, _, Linear<T>, _>(q0, $s, $z, accumulator),
-                Input::History => boxed::<T, _, History<T>, _>(q0, $s, $z, accumulator),
-                Input::Mid => boxed::<T, _, TwiceRate<T>, _>(q0, $s, $z, accumulator),
-            }
-            .map_err(|e| format!("{e:?}"))
-        };
-    }
-    // A post-step stabilizer with any scheme; Baumgarte (a right-hand side) only with a Runge–Kutta scheme.
-    macro_rules! with_stab {
-        ($s:expr, rk) => {
-            match stab {
-                Stab::Baumgarte(k) => {
-                    let b = Baumgarte::new($s, <T as Real>::from_f64(k))
-                        .map_err(|e| format!("{e:?}"))?;
-                    with_input!(b, Off)
-                }
-                _ => with_stab!($s, post_step),
-            }
-        };
-        ($s:expr, exp) => {
-            match stab {
-                Stab::Baumgarte(_) => Err(BAUMGARTE_RK_ONLY.to_string()),
-                _ => with_stab!($s, post_step),
-            }
-        };
-        ($s:expr, post_step) => {
-            match stab {
-                Stab::Off => with_input!($s, Off),
-                Stab::Normalize => with_input!($s, Normalize),
-                Stab::FirstOrder => with_input!($s, FirstOrder),
-                Stab::Every(n) => with_input!($s, Every(n)),
-                Stab::Baumgarte(_) => Err(BAUMGARTE_RK_ONLY.to_string()),
-            }
-        };
-    }
-    match method {
-        SchemeKind::Euler => with_stab!(Euler, rk),
-        SchemeKind::Rk2 => with_stab!(Rk2, rk),
-        SchemeKind::Rk3 => with_stab!(Rk3, rk),
-        SchemeKind::Rk4 => with_stab!(Rk4, rk),
-        SchemeKind::Rk5 => with_stab!(Rk5, rk),
-        SchemeKind::ExpMap => with_stab!(ExpMap, exp),
-        SchemeKind::Magnus4 => with_stab!(Magnus4, exp),
-        SchemeKind::Cf4 => with_stab!(Cf4, exp),
+    let config = library_config(method, stab, input, accumulator);
+    match config.build(q0) {
+        Ok(p) => Ok(Box::new(QuatpropRun {
+            p,
+            restart_on_refusal: matches!(input, Input::Linear | Input::Mid),
+            started: false,
+            refused: 0,
+            first_error: None,
+        })),
+        Err(Error::BaumgarteNeedsRungeKutta) => Err(BAUMGARTE_RK_ONLY.to_string()),
+        Err(e) => Err(format!("{e:?}")),
     }
 }
 
@@ -657,6 +630,9 @@ impl<T: LabReal> Integrator<T> for NalgebraAxisRun<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use quatprop::input::{History, Hold, Linear, TwiceRate};
+    use quatprop::scheme::Rk4;
+    use quatprop::stabilize::FirstOrder;
 
     fn stream(rates_z: &[f64], dt: f64) -> Vec<Sample<f64>> {
         rates_z

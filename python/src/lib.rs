@@ -1,11 +1,11 @@
 //! `quatprop._native`: the extension behind the `quatprop` Python package.
 //!
 //! The Python layer (`pysrc/quatprop/__init__.py`) validates and converts the arguments; this module runs
-//! the core library's own loop over the whole buffer with the GIL released. The input model, the
-//! scheme, the accumulator, the precision and the time base are type parameters of one generic loop
-//! ([`run`]), so each combination is monomorphized: the inner loop is the code a Rust user writes with
-//! those types. The default stabilizer (`FirstOrder`) is a type too; the others and the coning
-//! correction are the core's run-time enums ([`StabilizerKind`], [`ConingKind`]).
+//! the core library's own loop over the whole buffer with the GIL released. The configuration is the
+//! core's run-time [`Config`]; the loop ([`Run`]) is a [`Visit`] of the [`Configured`] propagator it
+//! builds, so it is compiled for each scheme × input model × accumulator, and for each precision and time
+//! base: the inner loop is the code a Rust user writes with those types (the stabilizer and the coning
+//! correction are the core's run-time enums, [`StabilizerKind`] and [`ConingKind`]).
 
 // As in the core: `!(t > last)` is written so that a NaN lands in the error branch.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -15,11 +15,12 @@ use std::time::Instant;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use quatprop::accumulate::{Accumulator, Kahan};
+use quatprop::accumulate::Accumulator;
+use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{Alignment, AxisRemap, BiasEstimator, FixedBias, FixedPeriod, TickClock};
 use quatprop::input::coning::ConingKind;
-use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use quatprop::scheme::{Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind};
+use quatprop::input::{History, InputModel};
+use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Stabilizer, StabilizerKind};
 use quatprop::{
     DeltaAngle, Error, EulerZxz, EulerZyx, GyroSample, Propagator, Quat, Real, Refused, Vec3,
@@ -164,9 +165,9 @@ impl<T: Real> TimeBase<T> for Seconds {
 /// The loop: every sample into the propagator, its attitude after every sample into `out`. A refused
 /// sample either stops the loop (`mask` is `None`) or is flagged and skipped, the state as after the last
 /// accepted sample and its interval carried into the next one.
-#[inline(never)]
+#[inline(always)]
 fn run<T, S, I, Z, A, B>(
-    mut p: Propagator<T, S, I, Z, A>,
+    p: &mut Propagator<T, S, I, Z, A>,
     mut time: B,
     rows: &[[T; 3]],
     stamps: impl Iterator<Item = B::Stamp>,
@@ -183,7 +184,7 @@ where
     B: TimeBase<T>,
 {
     for (index, ((row, stamp), o)) in rows.iter().zip(stamps).zip(out.iter_mut()).enumerate() {
-        if let Err(error) = time.push(&mut p, stamp, I::Sample::from_row(*row)) {
+        if let Err(error) = time.push(p, stamp, I::Sample::from_row(*row)) {
             match mask.as_deref_mut().and_then(|m| m.get_mut(index)) {
                 Some(m) => *m = true,
                 None => return Err(Refused { index, error }),
@@ -195,14 +196,39 @@ where
     Ok(())
 }
 
-#[derive(Clone, Copy)]
-enum InputSel {
-    Hold,
-    Linear,
-    History,
-    TwiceRate,
-    GaussPoints,
-    DeltaAngles(ConingKind),
+/// [`run`] as a [`Visit`] of the configured propagator: compiled for each scheme × input model ×
+/// accumulator, precision and time base.
+struct Run<'a, T, B, St> {
+    time: B,
+    rows: &'a [[T; 3]],
+    stamps: St,
+    out: &'a mut [[T; 4]],
+    mask: Option<&'a mut [bool]>,
+}
+
+impl<T, B, St> Visit<T> for Run<'_, T, B, St>
+where
+    T: Real,
+    B: TimeBase<T>,
+    St: Iterator<Item = B::Stamp>,
+{
+    type Output = Result<(), Refused>;
+    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<T>,
+        I: InputModel<T, Sample = GyroSample<T>>,
+        A: Accumulator<T>,
+    {
+        run(p, self.time, self.rows, self.stamps, self.out, self.mask)
+    }
+    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<T>,
+        I: InputModel<T, Sample = DeltaAngle<T>>,
+        A: Accumulator<T>,
+    {
+        run(p, self.time, self.rows, self.stamps, self.out, self.mask)
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -224,11 +250,9 @@ enum BiasSel<T> {
     },
 }
 
-struct Config<'a, T> {
-    scheme: SchemeKind,
-    stabilizer: StabilizerKind,
-    input: InputSel,
-    kahan: bool,
+/// One call of `integrate`: the propagator's configuration and what the binding adds around it.
+struct Job<'a, T> {
+    config: Config,
     q0: Quat<T>,
     time: TimeSel<'a>,
     alignment: Option<Alignment<T>>,
@@ -286,7 +310,7 @@ fn front_end<T: Real>(
 }
 
 fn integrate_impl<T: Real>(
-    cfg: &Config<'_, T>,
+    cfg: &Job<'_, T>,
     rows: &[[T; 3]],
     out: &mut [[T; 4]],
     mask: Option<&mut [bool]>,
@@ -298,69 +322,35 @@ fn integrate_impl<T: Real>(
     } else {
         rows
     };
-    let (stabilizer, q0) = (cfg.stabilizer, cfg.q0);
-    macro_rules! with_time {
-        ($p:expr) => {{
-            let p = $p;
-            match cfg.time {
-                TimeSel::Fixed(period) => {
-                    let period = FixedPeriod::<T>::new(period).map_err(Failure::Config)?;
-                    run(p, Fixed(period), rows, std::iter::repeat(()), out, mask)
-                }
-                TimeSel::Seconds(t) => {
-                    run(p, Seconds::default(), rows, t.iter().copied(), out, mask)
-                }
-                TimeSel::Ticks(ticks, frequency, bits) => {
-                    let clock = TickClock::<T>::new(frequency, bits).map_err(Failure::Config)?;
-                    run(p, Ticks(clock), rows, ticks.iter().copied(), out, mask)
-                }
-            }
-        }};
-    }
-    macro_rules! with_accumulator {
-        ($scheme:expr, $input:expr, $stabilizer:expr) => {{
-            let p = Propagator::new(q0, $scheme, $input, $stabilizer).map_err(Failure::Config)?;
-            if cfg.kahan {
-                with_time!(p.with_accumulator(Kahan::new()))
-            } else {
-                with_time!(p)
-            }
-        }};
-    }
-    // The default stabilizer is a type of its own (the run-time `StabilizerKind` match measured 15–20 %
-    // slower in the extension); the others share `StabilizerKind`.
-    macro_rules! with_stabilizer {
-        ($scheme:expr, $input:expr) => {
-            if stabilizer == StabilizerKind::FirstOrder {
-                with_accumulator!($scheme, $input, FirstOrder)
-            } else {
-                with_accumulator!($scheme, $input, stabilizer)
-            }
-        };
-    }
-    macro_rules! with_input {
-        ($scheme:expr) => {
-            match cfg.input {
-                InputSel::Hold => with_stabilizer!($scheme, Hold),
-                InputSel::Linear => with_stabilizer!($scheme, Linear::new()),
-                InputSel::History => with_stabilizer!($scheme, History::new()),
-                InputSel::TwiceRate => with_stabilizer!($scheme, TwiceRate::new()),
-                InputSel::GaussPoints => with_stabilizer!($scheme, GaussPoints::new()),
-                InputSel::DeltaAngles(c) => with_stabilizer!($scheme, DeltaAngles::new(c)),
-            }
-        };
-    }
-    // The scheme is a type parameter too: the core's `SchemeKind` match inside every step costs about a
-    // third of the step (measured), the stabilizer's `StabilizerKind` match nothing measurable.
-    match cfg.scheme {
-        SchemeKind::Euler => with_input!(Euler),
-        SchemeKind::Rk2 => with_input!(Rk2),
-        SchemeKind::Rk3 => with_input!(Rk3),
-        SchemeKind::Rk4 => with_input!(Rk4),
-        SchemeKind::Rk5 => with_input!(Rk5),
-        SchemeKind::ExpMap => with_input!(ExpMap),
-        SchemeKind::Magnus4 => with_input!(Magnus4),
-        SchemeKind::Cf4 => with_input!(Cf4),
+    let mut p: Configured<T> = cfg.config.build(cfg.q0).map_err(Failure::Config)?;
+    match cfg.time {
+        TimeSel::Fixed(period) => {
+            let period = FixedPeriod::<T>::new(period).map_err(Failure::Config)?;
+            p.visit(Run {
+                time: Fixed(period),
+                rows,
+                stamps: std::iter::repeat(()),
+                out,
+                mask,
+            })
+        }
+        TimeSel::Seconds(t) => p.visit(Run {
+            time: Seconds::default(),
+            rows,
+            stamps: t.iter().copied(),
+            out,
+            mask,
+        }),
+        TimeSel::Ticks(ticks, frequency, bits) => {
+            let clock = TickClock::<T>::new(frequency, bits).map_err(Failure::Config)?;
+            p.visit(Run {
+                time: Ticks(clock),
+                rows,
+                stamps: ticks.iter().copied(),
+                out,
+                mask,
+            })
+        }
     }
     .map_err(Failure::Refused)
 }
@@ -418,14 +408,14 @@ fn parse_coning(name: &str) -> PyResult<ConingKind> {
     })
 }
 
-fn parse_input(name: &str, coning: &str) -> PyResult<InputSel> {
+fn parse_input(name: &str, coning: &str) -> PyResult<InputKind> {
     Ok(match name {
-        "hold" => InputSel::Hold,
-        "linear" => InputSel::Linear,
-        "history" => InputSel::History,
-        "twice_rate" => InputSel::TwiceRate,
-        "gauss_points" => InputSel::GaussPoints,
-        "delta_angles" => InputSel::DeltaAngles(parse_coning(coning)?),
+        "hold" => InputKind::Hold,
+        "linear" => InputKind::Linear,
+        "history" => InputKind::History,
+        "twice_rate" => InputKind::TwiceRate,
+        "gauss_points" => InputKind::GaussPoints,
+        "delta_angles" => InputKind::DeltaAngles(parse_coning(coning)?),
         _ => {
             return Err(PyValueError::new_err(format!(
                 "unknown input model {name:?}"
@@ -521,11 +511,14 @@ macro_rules! integrate_fn {
                 },
                 _ => return Err(PyValueError::new_err("give a fixed bias or an estimator, not both")),
             };
-            let cfg = Config {
-                scheme: parse_scheme(scheme)?,
-                stabilizer: parse_stabilizer(stabilizer, every)?,
-                input: parse_input(input, coning)?,
-                kahan,
+            let cfg = Job {
+                config: Config {
+                    scheme: parse_scheme(scheme)?,
+                    baumgarte_gain: None,
+                    input: parse_input(input, coning)?,
+                    stabilizer: parse_stabilizer(stabilizer, every)?,
+                    accumulator: if kahan { AccumulatorKind::Kahan } else { AccumulatorKind::Plain },
+                },
                 q0: Quat::new(
                     <$t>::from_f64(q0[0]),
                     <$t>::from_f64(q0[1]),
