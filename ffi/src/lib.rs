@@ -1123,6 +1123,26 @@ pub unsafe extern "C" fn quatprop_get_counters(
     }
 }
 
+/// The library's version, a static NUL-terminated string (e.g. "0.2.0"): compare it with what the
+/// firmware was built against, e.g. in a boot log. Never NULL.
+#[no_mangle]
+pub extern "C" fn quatprop_version() -> *const core::ffi::c_char {
+    const VERSION: &core::ffi::CStr =
+        match core::ffi::CStr::from_bytes_with_nul(concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes()) {
+            Ok(v) => v,
+            Err(_) => c"unknown",
+        };
+    VERSION.as_ptr()
+}
+
+/// The library's `QUATPROP_ABI_VERSION`: a program checks at run time that the library it is linked with
+/// has the layout and values of the header it was compiled with
+/// (`quatprop_abi_version() == QUATPROP_ABI_VERSION`).
+#[no_mangle]
+pub extern "C" fn quatprop_abi_version() -> u32 {
+    QUATPROP_ABI_VERSION
+}
+
 /// A static, NUL-terminated name for a status value (e.g. "QUATPROP_NON_FINITE_RATE"); "unknown status"
 /// for a value that names none. Never NULL.
 #[no_mangle]
