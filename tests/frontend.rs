@@ -319,7 +319,7 @@ fn bias_estimator_learns_still_bias_and_nothing_else() {
     let bias = Vec3::new(0.012, -0.007, 0.003);
     let sigma = 0.002; // rad/s per sample
     let mut noise = Noise(7);
-    let mut est = BiasEstimator::<f64>::new(1000, gate).unwrap();
+    let mut est = BiasEstimator::<f64>::new(1.0, 1.0e-3, gate).unwrap();
     let sample = |extra: Vec3<f64>, noise: &mut Noise| {
         GyroSample::new(bias + extra + Vec3::new(noise.next(), noise.next(), noise.next()) * sigma)
     };
@@ -358,15 +358,15 @@ fn bias_estimator_learns_still_bias_and_nothing_else() {
     }
     assert!(est.bias().x > learned.x + 0.002, "{:?}", est.bias());
     assert_eq!(
-        BiasEstimator::<f32>::new(0, 0.05),
+        BiasEstimator::<f32>::from_samples(0, 0.05, 64),
         Err(Error::InvalidEstimator)
     );
     assert_eq!(
-        BiasEstimator::<f32>::new(10, f32::NAN),
+        BiasEstimator::<f32>::from_samples(10, f32::NAN, 64),
         Err(Error::InvalidEstimator)
     );
     assert_eq!(
-        BiasEstimator::<f32>::new(10, -1.0),
+        BiasEstimator::<f32>::from_samples(10, -1.0, 64),
         Err(Error::InvalidEstimator)
     );
 }
@@ -440,22 +440,22 @@ fn front_end_constructors_refuse_bad_values_with_typed_errors() {
             FixedBias::new(Vec3::new(0.0, bad, 0.0)),
             Err(Error::NonFiniteRate)
         );
-        let est = BiasEstimator::<f32>::new(10, 0.05).unwrap();
+        let est = BiasEstimator::<f32>::new(0.01, 1.0e-3, 0.05).unwrap();
         assert_eq!(
             est.with_initial(Vec3::new(bad, 0.0, 0.0)),
             Err(Error::NonFiniteRate)
         );
         assert_eq!(
-            BiasEstimator::<f32>::new(10, bad),
+            BiasEstimator::<f32>::from_samples(10, bad, 64),
             Err(Error::InvalidEstimator)
         );
     }
     assert_eq!(
-        BiasEstimator::<f32>::with_memory(10, 0.05, 0),
+        BiasEstimator::<f32>::from_samples(10, 0.05, 0),
         Err(Error::InvalidEstimator)
     );
     assert_eq!(
-        BiasEstimator::<f32>::new(10, 0.0),
+        BiasEstimator::<f32>::from_samples(10, 0.0, 64),
         Err(Error::InvalidEstimator)
     );
     // A tick too long to split exactly (beyond f32::MAX / 2^27 s) and one that underflows f32.
@@ -465,4 +465,30 @@ fn front_end_constructors_refuse_bad_values_with_typed_errors() {
         TickClock::<f32>::new(f64::INFINITY, 32),
         Err(Error::NonFiniteStep)
     );
+}
+
+/// The window is a duration: the same second at 1 kHz and at 400 Hz; a window beyond 2³¹ − 1 samples (which
+/// learned the bias with the wrong sign) is refused.
+#[test]
+fn bias_window_is_given_in_seconds() {
+    let at_1k = BiasEstimator::<f32>::new(1.0, 1.0e-3, 0.05).unwrap();
+    assert_eq!(at_1k, BiasEstimator::from_samples(1000, 0.05, 64).unwrap());
+    let at_400 = BiasEstimator::<f32>::with_memory(1.0, 2.5e-3, 0.05, 8).unwrap();
+    assert_eq!(at_400, BiasEstimator::from_samples(400, 0.05, 8).unwrap());
+    // Learned after 400 still samples at 400 Hz, not before.
+    let mut e = at_400;
+    let b = Vec3::new(0.01_f32, -0.02, 0.005);
+    for _ in 0..399 {
+        e.update(GyroSample::new(b)).unwrap();
+    }
+    assert!(!e.is_learned());
+    e.update(GyroSample::new(b)).unwrap();
+    assert!(e.is_learned());
+    let bad = Err(Error::InvalidEstimator);
+    assert_eq!(BiasEstimator::<f32>::new(0.0, 1.0e-3, 0.05), bad);
+    assert_eq!(BiasEstimator::<f32>::new(1.0, f64::NAN, 0.05), bad);
+    assert_eq!(BiasEstimator::<f32>::new(1.0e-4, 1.0e-3, 0.05), bad); // under one sample
+    assert_eq!(BiasEstimator::<f32>::new(3.0e6, 1.0e-3, 0.05), bad); // 3e9 samples
+    assert_eq!(BiasEstimator::<f32>::from_samples(1 << 31, 0.05, 64), bad);
+    assert!(BiasEstimator::<f32>::from_samples(i32::MAX as u32, 0.05, 64).is_ok());
 }

@@ -738,6 +738,19 @@ quatprop_status_t quatprop_get_norm_error(const quatprop_t *s, float *out);
 quatprop_status_t quatprop_get_counters(const quatprop_t *s, quatprop_counters_t *out);
 
 /**
+ * The library's version, a static NUL-terminated string (e.g. "0.2.0"): compare it with what the
+ * firmware was built against, e.g. in a boot log. Never NULL.
+ */
+const char *quatprop_version(void);
+
+/**
+ * The library's `QUATPROP_ABI_VERSION`: a program checks at run time that the library it is linked with
+ * has the layout and values of the header it was compiled with
+ * (`quatprop_abi_version() == QUATPROP_ABI_VERSION`).
+ */
+uint32_t quatprop_abi_version(void);
+
+/**
  * A static, NUL-terminated name for a status value (e.g. "QUATPROP_NON_FINITE_RATE"); "unknown status"
  * for a value that names none. Never NULL.
  */

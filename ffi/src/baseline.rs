@@ -104,7 +104,7 @@ mod kinds {
             Ok(Self {
                 scale: CountScale::full_scale_dps(2000.0)?,
                 mounting: AxisRemap::PyNxPz,
-                bias: BiasEstimator::new(1000, 0.05)?,
+                bias: BiasEstimator::new(1.0, 1.0e-3, 0.05)?,
                 period: FixedPeriod::new(1.0e-3)?,
                 propagator: Propagator::new(
                     Quat::IDENTITY,

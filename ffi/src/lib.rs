@@ -671,7 +671,7 @@ pub unsafe extern "C" fn quatprop_set_bias_estimator(
     // SAFETY: forwarded contract.
     unsafe {
         with(s, |st| {
-            st.front.bias = Bias::Estimator(BiasEstimator::with_memory(window, gate, memory)?);
+            st.front.bias = Bias::Estimator(BiasEstimator::from_samples(window, gate, memory)?);
             Ok(())
         })
     }
@@ -1127,11 +1127,12 @@ pub unsafe extern "C" fn quatprop_get_counters(
 /// firmware was built against, e.g. in a boot log. Never NULL.
 #[no_mangle]
 pub extern "C" fn quatprop_version() -> *const core::ffi::c_char {
-    const VERSION: &core::ffi::CStr =
-        match core::ffi::CStr::from_bytes_with_nul(concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes()) {
-            Ok(v) => v,
-            Err(_) => c"unknown",
-        };
+    const VERSION: &core::ffi::CStr = match core::ffi::CStr::from_bytes_with_nul(
+        concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes(),
+    ) {
+        Ok(v) => v,
+        Err(_) => c"unknown",
+    };
     VERSION.as_ptr()
 }
 

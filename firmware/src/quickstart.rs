@@ -7,6 +7,8 @@ use quatprop::{Error, GyroSample, Propagator, Quat, Recommended};
 
 /// Samples converted per batch of a FIFO read.
 const BATCH: usize = 8;
+/// The gyro's sample period (s): 1 kHz.
+const PERIOD: f64 = 1.0e-3;
 
 /// One attitude, fed from a gyro's FIFO: raw counts → body axes → bias removed → integrated.
 pub struct Attitude {
@@ -26,8 +28,8 @@ impl Attitude {
             scale: CountScale::full_scale_dps(2000.0)?,
             mounting: AxisRemap::PyNxPz,
             // Learns the bias over 1 s windows while every axis stays within 0.05 rad/s (2.9 °/s).
-            bias: BiasEstimator::new(1000, 0.05)?,
-            period: FixedPeriod::new(1.0e-3)?,
+            bias: BiasEstimator::new(1.0, PERIOD, 0.05)?,
+            period: FixedPeriod::new(PERIOD)?,
             propagator: Propagator::recommended(Quat::IDENTITY)?,
             batch: [GyroSample::default(); BATCH],
             refused: 0,

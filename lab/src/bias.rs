@@ -165,7 +165,8 @@ impl Estimator {
             }
             Estimator::Quatprop { gate_dps } => {
                 let gate = gate_dps.to_radians() as f32;
-                let mut e = BiasEstimator::<f32>::new(FS, gate).expect("valid window and gate");
+                let mut e = BiasEstimator::<f32>::from_samples(FS, gate, 64)
+                    .expect("valid window and gate");
                 s.iter()
                     .map(|w| {
                         let _ = e.update(GyroSample::new(*w));

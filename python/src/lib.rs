@@ -284,7 +284,7 @@ fn front_end<T: Real>(
             memory,
             initial,
         } => {
-            let e = BiasEstimator::with_memory(window, gate, memory)?;
+            let e = BiasEstimator::from_samples(window, gate, memory)?;
             estimator = Some(match initial {
                 Some(b) => e.with_initial(b)?,
                 None => e,

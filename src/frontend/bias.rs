@@ -59,7 +59,8 @@ impl<T: Real> FixedBias<T> {
 /// ```
 /// use quatprop::frontend::BiasEstimator;
 /// use quatprop::{GyroSample, Vec3};
-/// let mut est = BiasEstimator::new(64, 0.05_f64)?; // windows of 64 samples, gate 0.05 rad/s
+/// // Windows of 64 ms at 1 kHz (64 samples), gate 0.05 rad/s.
+/// let mut est = BiasEstimator::new(0.064, 1.0e-3, 0.05_f64)?;
 /// let bias = Vec3::new(0.0078125, -0.015625, 0.00390625); // binary fractions: sums are exact
 /// for _ in 0..64 {
 ///     est.update(GyroSample::new(bias))?;
@@ -89,13 +90,15 @@ pub struct BiasEstimator<T> {
 }
 
 impl<T: Real> BiasEstimator<T> {
-    /// Windows of `window` samples (e.g. one second of samples), stillness gate `gate` (rad/s), a running
-    /// mean over the last 64 still windows.
+    /// Windows of `window_seconds` (s; e.g. 1 s) of samples taken every `sample_period` (s), stillness gate
+    /// `gate` (rad/s), a running mean over the last 64 still windows. The window holds
+    /// `round(window_seconds / sample_period)` samples: change the rate and the window stays as long.
     ///
     /// # Errors
-    /// [`Error::InvalidEstimator`] for `window` 0 or a `gate` that is not finite and positive.
-    pub fn new(window: u32, gate: T) -> Result<Self, Error> {
-        Self::with_memory(window, gate, 64)
+    /// [`Error::InvalidEstimator`] for a duration or period that is not finite and positive, a window of
+    /// less than one or more than 2³¹ − 1 samples, or a `gate` that is not finite and positive.
+    pub fn new(window_seconds: f64, sample_period: f64, gate: T) -> Result<Self, Error> {
+        Self::with_memory(window_seconds, sample_period, gate, 64)
     }
 
     /// As [`BiasEstimator::new`], with the running mean over the last `memory` still windows
@@ -103,8 +106,34 @@ impl<T: Real> BiasEstimator<T> {
     ///
     /// # Errors
     /// [`Error::InvalidEstimator`] as for [`BiasEstimator::new`], and for `memory` 0.
-    pub fn with_memory(window: u32, gate: T, memory: u32) -> Result<Self, Error> {
-        if window == 0 || memory == 0 || !(gate > T::ZERO && gate <= T::MAX) {
+    pub fn with_memory(
+        window_seconds: f64,
+        sample_period: f64,
+        gate: T,
+        memory: u32,
+    ) -> Result<Self, Error> {
+        let positive = |x: f64| x > 0.0 && x <= f64::MAX;
+        if !(positive(window_seconds) && positive(sample_period)) {
+            return Err(Error::InvalidEstimator);
+        }
+        let samples = libm::round(window_seconds / sample_period);
+        if !(samples >= 1.0 && samples <= f64::from(i32::MAX)) {
+            return Err(Error::InvalidEstimator);
+        }
+        Self::from_samples(samples as u32, gate, memory)
+    }
+
+    /// As [`BiasEstimator::with_memory`], the window given as a number of samples (`1 ≤ window ≤ 2³¹ − 1`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidEstimator`] for a window outside that range, `memory` 0, or a `gate` that is not
+    /// finite and positive.
+    pub fn from_samples(window: u32, gate: T, memory: u32) -> Result<Self, Error> {
+        if window == 0
+            || window > i32::MAX as u32
+            || memory == 0
+            || !(gate > T::ZERO && gate <= T::MAX)
+        {
             return Err(Error::InvalidEstimator);
         }
         Ok(Self {

@@ -14,7 +14,7 @@
 //! use quatprop::{input::History, scheme::ExpMap, stabilize::FirstOrder, Propagator, Quat};
 //! let scale = CountScale::<f32>::full_scale_dps(2000.0)?;  // ±2000 °/s on 16 bits
 //! let to_body = AxisRemap::PyNxPz;                          // body x = sensor y, body y = −sensor x
-//! let mut bias = BiasEstimator::<f32>::new(1000, 0.05)?;   // 1 s windows at 1 kHz, 0.05 rad/s gate
+//! let mut bias = BiasEstimator::<f32>::new(1.0, 1.0e-3, 0.05)?; // 1 s windows at 1 kHz, 0.05 rad/s gate
 //! let mut period = FixedPeriod::<f32>::new(1.0e-3)?;      // 1 kHz, kept exactly
 //! let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
 //! let mut learned_at = Quat::IDENTITY;

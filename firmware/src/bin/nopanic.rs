@@ -144,7 +144,7 @@ fn front_end() {
     if let Ok(b) = FixedBias::new(black_box(Vec3::new(0.01_f32, 0.0, 0.0))) {
         black_box(b.apply(s));
     }
-    if let Ok(e) = BiasEstimator::<f32>::new(black_box(1000), black_box(0.05)) {
+    if let Ok(e) = BiasEstimator::<f32>::new(black_box(1.0), black_box(1.0e-3), black_box(0.05)) {
         if let Ok(mut e) = e.with_initial(black_box(Vec3::new(0.0, 0.0, 0.01))) {
             for _ in 0..black_box(3) {
                 let _ = black_box(e.update(black_box(s)));

@@ -302,9 +302,9 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
     };
     let default_memory = b.bool();
     let r = if default_memory {
-        BiasEstimator::new(window, gate)
+        BiasEstimator::from_samples(window, gate, 64)
     } else {
-        BiasEstimator::with_memory(window, gate, memory)
+        BiasEstimator::from_samples(window, gate, memory)
     };
     let memory = if default_memory { 64 } else { memory };
     let valid = window > 0 && memory > 0 && gate > T::ZERO && gate.is_finite();

@@ -348,7 +348,7 @@ fn main() {
     );
     // The front end: an axis remap and a bias estimator; a measured alignment matrix and a fixed bias.
     let remap = AxisRemap::PyNxPz;
-    let mut est = BiasEstimator::<f32>::with_memory(50, 0.9_f64 as f32, 4).unwrap();
+    let mut est = BiasEstimator::<f32>::from_samples(50, 0.9_f64 as f32, 4).unwrap();
     let fe: Vec<GyroSample<f32>> = s32
         .iter()
         .map(|s| {
