@@ -51,6 +51,7 @@ pub trait Accumulator<T: Real>: Copy {
 /// Plain addition `q + Δ`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Plain;
 
 impl<T: Real> Accumulator<T> for Plain {
@@ -79,6 +80,7 @@ impl<T: Real> Accumulator<T> for Plain {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Kahan<T> {
     /// The negated low part not yet absorbed into the attitude.
     compensation: Quat<T>,
@@ -136,6 +138,7 @@ impl<T: Real> Accumulator<T> for Kahan<T> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FloatFloat<T> {
     /// The attitude's low part `l`.
     low: Quat<T>,

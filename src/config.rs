@@ -50,6 +50,7 @@ use crate::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Refused};
 /// The input model of a [`Config`] ([`crate::input`]): what is known of ω inside a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum InputKind {
     /// [`Hold`]: each rate held over its interval.
     Hold,
@@ -68,6 +69,7 @@ pub enum InputKind {
 /// How a [`Config`]'s increments are added ([`crate::accumulate`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum AccumulatorKind {
     /// [`Plain`]: `q + Δ`.
     Plain,
@@ -82,6 +84,7 @@ pub enum AccumulatorKind {
 /// [`Config::build`] validates it and builds a [`Configured`] propagator in the precision asked for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Config {
     /// The integration scheme ([`crate::scheme`]).
     pub scheme: SchemeKind,
@@ -248,6 +251,7 @@ impl<T: Real> Scheme<T> for BaumgarteKind<T> {
 /// The input model's state, one variant per [`InputKind`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum InputState<T> {
     Hold(Hold),
     Linear(Linear<T>),
@@ -260,6 +264,7 @@ enum InputState<T> {
 /// The accumulator's state, one variant per [`AccumulatorKind`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum AccumulatorState<T> {
     Plain(Plain),
     Kahan(Kahan<T>),
@@ -275,6 +280,7 @@ enum AccumulatorState<T> {
 /// accepted sample).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Configured<T> {
     q: Quat<T>,
     counters: Counters,

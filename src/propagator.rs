@@ -46,6 +46,7 @@ pub struct Propagator<T, S, I, Z, A = Plain> {
 /// the parts as run-time values and rebuilds a static propagator around them for each call).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Counters {
     steps: u64,
     /// Steps the stabilizer left uncorrected (`corrections = steps − uncorrected`): a stabilizer that

@@ -150,6 +150,7 @@ impl Stabilizer for Every {
 /// Any stabilization policy, chosen at run time (the host lab's way; firmware names one type instead).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum StabilizerKind {
     /// See [`Off`].
     Off,

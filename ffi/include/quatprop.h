@@ -316,6 +316,11 @@ typedef enum {
    * A numeric argument out of range (count scale not finite and positive).
    */
   QUATPROP_BAD_ARGUMENT = 106,
+  /**
+   * The state's bytes changed since the library last wrote them (its checksum or its encoding does not
+   * match: retained RAM after a reset, a stray write, a partial copy). Nothing was read from it.
+   */
+  QUATPROP_CORRUPTED_STATE = 107,
 } quatprop_status_t;
 
 /**
@@ -626,8 +631,9 @@ quatprop_status_t quatprop_push_delta(quatprop_t *s,
  * `*integrated` gets the number of samples integrated. On success it is `n`. On an error it is the index of
  * the refused sample: the state is then what it was after the last accepted sample, except that the
  * refused sample's interval is kept by the period (push `counts + 3 * (*integrated + 1)` next and it is
- * covered), as in Rust's `push_burst`. The errors before any sample (NULL, NOT_INITIALIZED,
- * NOT_CONFIGURED, WRONG_INPUT_KIND) leave everything unchanged and `*integrated` 0.
+ * covered), as in Rust's `push_burst`. The errors before any sample leave everything unchanged: NULL,
+ * NOT_INITIALIZED and CORRUPTED_STATE without writing `*integrated`, NOT_CONFIGURED and WRONG_INPUT_KIND
+ * with `*integrated` 0.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or `3 * n` readable

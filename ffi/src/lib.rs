@@ -52,22 +52,75 @@ pub struct quatprop_t {
     pub _opaque: [u64; QUATPROP_STATE_WORDS],
 }
 
-/// The Rust state behind `quatprop_t`: the tag first, so it can be read before anything else.
-#[repr(C)]
-struct State {
-    magic: u32,
-    inner: Inner,
-}
+/// "QPF2": the tag `quatprop_init` writes (version 2: the state is stored encoded and checksummed).
+const MAGIC: u32 = 0x5150_4632;
 
-/// "QPF1": the tag `quatprop_init` writes.
-const MAGIC: u32 = 0x5150_4631;
+/// The block's layout: the tag (word 0), the encoded length in bytes (word 1), the checksum (word 2),
+/// then the state encoded with postcard (`state::Inner`) and zeros to the end of the block.
+const HEADER: usize = 12;
+/// Bytes for the encoded state.
+const PAYLOAD: usize = QUATPROP_STATE_SIZE - HEADER;
 
-// The Rust state fits the C block on every target, and the documented size is the block's.
-const _: () = assert!(size_of::<State>() <= size_of::<quatprop_t>());
-const _: () = assert!(align_of::<State>() <= align_of::<quatprop_t>());
+/// The block as bytes.
+type Block = [u8; QUATPROP_STATE_SIZE];
+
+// The documented size is the block's.
 const _: () = assert!(size_of::<quatprop_t>() == QUATPROP_STATE_SIZE);
 const _: () = assert!(align_of::<quatprop_t>() == QUATPROP_STATE_ALIGN);
 const _: () = assert!(QUATPROP_STATE_WORDS * 8 == QUATPROP_STATE_SIZE);
+const _: () = assert!(size_of::<Block>() == size_of::<quatprop_t>());
+
+/// The checksum of a block: every 32-bit word but the checksum's own (word 2), each step
+/// `h ← (h ⊕ w) · 16777619` (FNV's prime). Each step is a bijection of `h` for a given word and of the word
+/// for a given `h`, so blocks that differ in one word (any single changed byte) never share a checksum.
+fn checksum(b: &Block) -> u32 {
+    let mut h: u32 = 0x811C_9DC5;
+    for (i, w) in b.chunks_exact(4).enumerate() {
+        if i != 2 {
+            let word = u32::from_ne_bytes([w[0], w[1], w[2], w[3]]);
+            h = (h ^ word).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
+}
+
+fn word(b: &Block, i: usize) -> u32 {
+    let at = 4 * i;
+    match b.get(at..at + 4) {
+        Some(&[a, b, c, d]) => u32::from_ne_bytes([a, b, c, d]),
+        _ => 0,
+    }
+}
+
+/// The state a block holds, checked: `QUATPROP_NOT_INITIALIZED` without the tag, `QUATPROP_CORRUPTED_STATE`
+/// if the length, the checksum or the encoding is wrong. Nothing is decoded before the checksum matches.
+fn load(b: &Block) -> Result<Inner, quatprop_status_t> {
+    if word(b, 0) != MAGIC {
+        return Err(S::QUATPROP_NOT_INITIALIZED);
+    }
+    let len = word(b, 1) as usize;
+    if len > PAYLOAD || word(b, 2) != checksum(b) {
+        return Err(S::QUATPROP_CORRUPTED_STATE);
+    }
+    let bytes = b
+        .get(HEADER..HEADER + len)
+        .ok_or(S::QUATPROP_CORRUPTED_STATE)?;
+    postcard::from_bytes(bytes).map_err(|_| S::QUATPROP_CORRUPTED_STATE)
+}
+
+/// `inner` as a block: tag, length, checksum, encoding, zeros.
+fn encode(inner: &Inner) -> Result<Block, quatprop_status_t> {
+    let mut b: Block = [0; QUATPROP_STATE_SIZE];
+    let (head, payload) = b.split_at_mut(HEADER);
+    let len = postcard::to_slice(inner, payload)
+        .map_err(|_| S::QUATPROP_UNKNOWN_ERROR)?
+        .len();
+    head[0..4].copy_from_slice(&MAGIC.to_ne_bytes());
+    head[4..8].copy_from_slice(&(len as u32).to_ne_bytes());
+    let sum = checksum(&b);
+    b[8..12].copy_from_slice(&sum.to_ne_bytes());
+    Ok(b)
+}
 
 /// Result of every call. Values are fixed (ABI); 1 to 15 mirror `quatprop::Error`.
 #[repr(C)]
@@ -119,6 +172,9 @@ pub enum quatprop_status_t {
     QUATPROP_NOT_CONFIGURED = 105,
     /// A numeric argument out of range (count scale not finite and positive).
     QUATPROP_BAD_ARGUMENT = 106,
+    /// The state's bytes changed since the library last wrote them (its checksum or its encoding does not
+    /// match: retained RAM after a reset, a stray write, a partial copy). Nothing was read from it.
+    QUATPROP_CORRUPTED_STATE = 107,
 }
 
 use quatprop_status_t as S;
@@ -404,59 +460,55 @@ unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], quatprop_status
     Ok(unsafe { core::slice::from_raw_parts(p, n) })
 }
 
-/// The state behind `s` if `quatprop_init` set it up.
+/// The block behind `s`.
 ///
 /// # Safety
-/// `s`, if non-null and aligned, must point to a `quatprop_t`.
-unsafe fn initialized(s: *const quatprop_t) -> Result<*const State, quatprop_status_t> {
+/// `s`, if non-null and aligned, must point to a readable `quatprop_t`.
+unsafe fn block<'a>(s: *const quatprop_t) -> Result<&'a Block, quatprop_status_t> {
     check(s)?;
-    let s = s.cast::<State>();
-    // SAFETY: non-null, aligned (checked; State's alignment is at most quatprop_t's, asserted above) and
-    // within the block (State fits, asserted above). `magic` is a u32 at offset 0 (repr(C)): any bits are
-    // a valid u32, and it is read before anything else.
-    let magic = unsafe { core::ptr::addr_of!((*s).magic).read() };
-    if magic == MAGIC {
-        Ok(s)
-    } else {
-        Err(S::QUATPROP_NOT_INITIALIZED)
-    }
+    // SAFETY: non-null and aligned (checked); a `quatprop_t` is 384 readable bytes per the caller's
+    // contract, and any bytes are a valid `[u8; 384]`.
+    Ok(unsafe { &*s.cast::<Block>() })
 }
 
-/// The initialized state behind `s`, to change.
+/// Writes `b` into the block behind `s` (checked by the caller).
 ///
 /// # Safety
-/// `s`, if non-null and aligned, must point to a writable `quatprop_t` that nothing else accesses during
-/// the call.
-unsafe fn state<'a>(s: *mut quatprop_t) -> Result<&'a mut Inner, quatprop_status_t> {
-    // SAFETY: forwarded contract.
-    let st = unsafe { initialized(s) }?.cast_mut();
-    // SAFETY: only `quatprop_init` writes MAGIC, together with a valid `Inner` (the caller must not write
-    // the block by other means than copying a whole initialized state). Exclusive per the caller's contract.
-    Ok(unsafe { &mut (*st).inner })
+/// `s` must be non-null, aligned and point to a writable `quatprop_t` not in use elsewhere.
+unsafe fn put(s: *mut quatprop_t, b: &Block) {
+    // SAFETY: per the contract; `Block` has the size of `quatprop_t` and alignment 1.
+    unsafe { s.cast::<Block>().write(*b) };
 }
 
-/// The initialized state behind `s`, to read.
+/// Runs `f` on the state behind `s`, then stores the state back (a refused call leaves it unchanged, so
+/// its bytes stay the same), and returns `f`'s result.
 ///
 /// # Safety
-/// `s`, if non-null and aligned, must point to a `quatprop_t` that nothing writes during the call.
-unsafe fn state_ref<'a>(s: *const quatprop_t) -> Result<&'a Inner, quatprop_status_t> {
+/// `s` must be NULL or point to a writable `quatprop_t` that nothing else accesses during the call.
+unsafe fn modify<R>(
+    s: *mut quatprop_t,
+    f: impl FnOnce(&mut Inner) -> R,
+) -> Result<R, quatprop_status_t> {
     // SAFETY: forwarded contract.
-    let st = unsafe { initialized(s) }?;
-    // SAFETY: as in `state`; shared, and nothing writes it during the call per the caller's contract.
-    Ok(unsafe { &(*st).inner })
+    let mut inner = load(unsafe { block(s) }?)?;
+    let r = f(&mut inner);
+    let b = encode(&inner)?;
+    // SAFETY: checked by `block`; writable and exclusive per the contract.
+    unsafe { put(s, &b) };
+    Ok(r)
 }
 
 /// Runs `f` on the state behind `s`.
 ///
 /// # Safety
-/// As [`state`].
+/// As [`modify`].
 unsafe fn with(
     s: *mut quatprop_t,
     f: impl FnOnce(&mut Inner) -> Result<(), Fail>,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    match unsafe { state(s) } {
-        Ok(inner) => done(f(inner)),
+    match unsafe { modify(s, f) } {
+        Ok(r) => done(r),
         Err(e) => e,
     }
 }
@@ -464,7 +516,7 @@ unsafe fn with(
 /// Runs `f` on the state behind `s` (read only) and writes its result to `out`.
 ///
 /// # Safety
-/// As [`state_ref`] and [`write`].
+/// `s` must be NULL or point to a readable `quatprop_t`; `out` NULL or writable.
 unsafe fn get<T>(
     s: *const quatprop_t,
     out: *mut T,
@@ -474,9 +526,9 @@ unsafe fn get<T>(
         return e;
     }
     // SAFETY: forwarded contract.
-    match unsafe { state_ref(s) } {
+    match unsafe { block(s) }.and_then(load) {
         // SAFETY: forwarded contract.
-        Ok(inner) => unsafe { write(out, f(inner)) },
+        Ok(inner) => unsafe { write(out, f(&inner)) },
         Err(e) => e,
     }
 }
@@ -535,18 +587,16 @@ pub unsafe extern "C" fn quatprop_init(
         coning: c.coning,
         accumulator: c.accumulator,
     };
-    match Inner::new(&choice) {
-        Ok(inner) => {
-            // SAFETY: non-null and aligned (checked), writable per the contract; State fits the block.
-            unsafe {
-                s.cast::<State>().write(State {
-                    magic: MAGIC,
-                    inner,
-                })
-            };
+    match Inner::new(&choice)
+        .map_err(status)
+        .and_then(|inner| encode(&inner))
+    {
+        Ok(b) => {
+            // SAFETY: non-null and aligned (checked), writable per the contract.
+            unsafe { put(s, &b) };
             S::QUATPROP_OK
         }
-        Err(f) => status(f),
+        Err(e) => e,
     }
 }
 
@@ -834,7 +884,7 @@ fn one(r: Result<usize, state::Refusal>) -> Result<(), Fail> {
 /// Runs a burst and reports through `integrated`.
 ///
 /// # Safety
-/// As [`state`] and [`write`].
+/// As [`modify`] and [`write`].
 unsafe fn burst(
     s: *mut quatprop_t,
     integrated: *mut usize,
@@ -844,13 +894,11 @@ unsafe fn burst(
         return e;
     }
     // SAFETY: forwarded contract.
-    let st = match unsafe { state(s) } {
-        Ok(st) => st,
+    let (n, status) = match unsafe { modify(s, f) } {
+        Ok(Ok(n)) => (n, S::QUATPROP_OK),
+        Ok(Err((i, fail))) => (i, status(fail)),
+        // The state could not be read: nothing is written.
         Err(e) => return e,
-    };
-    let (n, status) = match f(st) {
-        Ok(n) => (n, S::QUATPROP_OK),
-        Err((i, fail)) => (i, status(fail)),
     };
     // SAFETY: forwarded contract.
     unsafe { write(integrated, n) };
@@ -863,8 +911,9 @@ unsafe fn burst(
 /// `*integrated` gets the number of samples integrated. On success it is `n`. On an error it is the index of
 /// the refused sample: the state is then what it was after the last accepted sample, except that the
 /// refused sample's interval is kept by the period (push `counts + 3 * (*integrated + 1)` next and it is
-/// covered), as in Rust's `push_burst`. The errors before any sample (NULL, NOT_INITIALIZED,
-/// NOT_CONFIGURED, WRONG_INPUT_KIND) leave everything unchanged and `*integrated` 0.
+/// covered), as in Rust's `push_burst`. The errors before any sample leave everything unchanged: NULL,
+/// NOT_INITIALIZED and CORRUPTED_STATE without writing `*integrated`, NOT_CONFIGURED and WRONG_INPUT_KIND
+/// with `*integrated` 0.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or `3 * n` readable
@@ -1172,6 +1221,7 @@ pub extern "C" fn quatprop_status_name(status: i32) -> *const core::ffi::c_char 
         104 => c"QUATPROP_WRONG_INPUT_KIND",
         105 => c"QUATPROP_NOT_CONFIGURED",
         106 => c"QUATPROP_BAD_ARGUMENT",
+        107 => c"QUATPROP_CORRUPTED_STATE",
         _ => c"unknown status",
     };
     name.as_ptr()

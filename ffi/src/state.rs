@@ -46,7 +46,7 @@ impl From<Error> for Fail {
 pub type Refusal = (usize, Fail);
 
 /// The bias stage of the front end.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub enum Bias {
     None,
     Fixed(FixedBias<f32>),
@@ -65,7 +65,7 @@ impl Bias {
 }
 
 /// The sensor front end: counts → rad/s, sensor → body axes, bias removed; the time bases of the bursts.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct FrontEnd {
     pub scale: Option<CountScale<f32>>,
     pub alignment: Option<Alignment<f32>>,
@@ -106,8 +106,8 @@ impl FrontEnd {
     }
 }
 
-/// Everything a `quatprop_t` holds.
-#[derive(Clone, Copy)]
+/// Everything a `quatprop_t` holds (encoded: see `lib.rs`).
+#[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct Inner {
     pub prop: Configured<f32>,
     pub front: FrontEnd,

@@ -1,38 +1,62 @@
-//! Host tests: the committed header is the generated one; the API's error contract.
+//! Host tests: the state's encoding fits its block, and any changed byte is caught before anything is
+//! decoded. (The header test is the crate `header/`.)
 
 use super::*;
-use std::path::PathBuf;
+use quatprop::frontend::{Alignment, BiasEstimator, CountScale, FixedPeriod, TickClock};
 
-/// Regenerates the header in memory and compares it with `include/quatprop.h` (QUATPROP_BLESS=1 writes it).
-#[test]
-fn header_is_current() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let config = cbindgen::Config::from_file(dir.join("cbindgen.toml")).expect("cbindgen.toml");
-    let bindings = cbindgen::Builder::new()
-        .with_crate(&dir)
-        .with_config(config)
-        .generate()
-        .expect("cbindgen");
-    let mut fresh = Vec::new();
-    bindings.write(&mut fresh);
-    let path = dir.join("include/quatprop.h");
-    if std::env::var_os("QUATPROP_BLESS").is_some() {
-        std::fs::write(&path, &fresh).expect("write header");
-    }
-    let committed = std::fs::read(&path).unwrap_or_default();
-    assert!(
-        committed == fresh,
-        "ffi/include/quatprop.h is stale: run `QUATPROP_BLESS=1 cargo test header` in ffi/ and commit it"
-    );
+/// The largest state: delta angles with the five-sample correction, the float-float accumulator, and every
+/// front-end part (count scale, a matrix alignment, the bias estimator, period and clock), after samples.
+fn largest() -> state::Inner {
+    let choice = Choice {
+        q0: Quat::new(0.5, 0.5, 0.5, 0.5),
+        scheme: QUATPROP_SCHEME_CF4,
+        stabilizer: QUATPROP_STABILIZER_EVERY,
+        every: u32::MAX,
+        input: QUATPROP_INPUT_DELTA_ANGLES,
+        coning: QUATPROP_CONING_FIVE_SAMPLE,
+        accumulator: QUATPROP_ACCUMULATOR_FLOAT_FLOAT,
+    };
+    let mut inner = state::Inner::new(&choice).unwrap();
+    let r = [[0.0, 0.6, 0.8], [-1.0, 0.0, 0.0], [0.0, -0.8, 0.6]];
+    inner.front.scale = Some(CountScale::full_scale_dps(2000.0).unwrap());
+    inner.front.alignment = Some(Alignment::from_matrix(r).unwrap());
+    inner.front.bias =
+        Bias::Estimator(BiasEstimator::from_samples(u32::MAX / 2, 0.05, u32::MAX).unwrap());
+    inner.front.period = Some(FixedPeriod::new(1.0e-3).unwrap());
+    inner.front.clock = Some(TickClock::new(1.0e6, 32).unwrap());
+    inner
 }
 
 #[test]
-fn state_fits_with_room() {
-    // The documented block holds the largest configuration; the slack is room for later versions.
-    let used = size_of::<State>();
-    println!(
-        "State: {used} of {QUATPROP_STATE_SIZE} bytes, align {}",
-        align_of::<State>()
-    );
-    assert!(used <= QUATPROP_STATE_SIZE && align_of::<State>() <= QUATPROP_STATE_ALIGN);
+fn the_largest_state_fits_its_block_with_room() {
+    let inner = largest();
+    let mut buf = [0u8; 1024];
+    let len = postcard::to_slice(&inner, &mut buf).unwrap().len();
+    // Integers are varints: the counters (three u64, 1 → 10 bytes) and up to ten u32 fields (pending, the
+    // estimator's and the clock's counts, 1 → 5 bytes) can grow.
+    let worst = len + 3 * 9 + 10 * 4;
+    println!("encoded state: {len} bytes, at most {worst} of {PAYLOAD}");
+    assert!(worst <= PAYLOAD, "{worst} > {PAYLOAD}");
+}
+
+#[test]
+fn a_state_round_trips_and_any_changed_byte_is_caught() {
+    let b = encode(&largest()).unwrap();
+    assert!(load(&b).is_ok());
+    let mut caught = 0;
+    for i in 0..QUATPROP_STATE_SIZE {
+        for flip in [0x01u8, 0x80, 0xff] {
+            let mut c = b;
+            c[i] ^= flip;
+            let r = load(&c);
+            let expected = if i < 4 {
+                S::QUATPROP_NOT_INITIALIZED
+            } else {
+                S::QUATPROP_CORRUPTED_STATE
+            };
+            assert_eq!(r.err(), Some(expected), "byte {i} ^ {flip:#x}");
+            caught += 1;
+        }
+    }
+    assert_eq!(caught, 3 * QUATPROP_STATE_SIZE);
 }

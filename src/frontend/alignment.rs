@@ -21,6 +21,7 @@ pub const ROTATION_TOLERANCE: f64 = 1e-4;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum AxisRemap {
     /// body x = +sensor x, body y = +sensor y, body z = +sensor z.
     PxPyPz,
@@ -193,6 +194,7 @@ impl AxisRemap {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Alignment<T> {
     /// One of the 24 square mountings.
     Remap(AxisRemap),

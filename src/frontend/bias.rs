@@ -13,6 +13,7 @@ use crate::{Error, GyroSample, Real, Vec3};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixedBias<T> {
     bias: Vec3<T>,
 }
@@ -76,6 +77,7 @@ impl<T: Real> FixedBias<T> {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BiasEstimator<T> {
     window: u32,
     gate: T,

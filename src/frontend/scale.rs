@@ -24,6 +24,7 @@ use crate::{Error, GyroSample, Real, Vec3};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CountScale<T> {
     rad_per_count: T,
 }

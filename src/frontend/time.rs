@@ -45,6 +45,7 @@ fn split_period<T: Real>(period: f64) -> Result<(T, T), Error> {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixedPeriod<T> {
     hi: T,
     lo: T,
@@ -165,6 +166,7 @@ impl<T: Real> FixedPeriod<T> {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TickClock<T> {
     hi: T,
     lo: T,

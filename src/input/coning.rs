@@ -240,6 +240,7 @@ n_sample!(
 /// Any coning correction, chosen at run time (the host lab's way; firmware names one type instead).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ConingKind {
     /// [`Uncorrected`].
     Uncorrected,

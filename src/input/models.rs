@@ -29,6 +29,7 @@ fn finite_rate<T: Real>(s: &GyroSample<T>) -> Result<Vec3<T>, Error> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Hold;
 
 impl Hold {
@@ -73,6 +74,7 @@ impl<T: Real> InputModel<T> for Hold {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Linear<T> {
     previous: Option<Vec3<T>>,
 }
@@ -139,6 +141,7 @@ impl<T: Real> InputModel<T> for Linear<T> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct History<T> {
     /// The newest sample ω_k (valid when `count ≥ 1`).
     w: Vec3<T>,
@@ -308,6 +311,7 @@ impl<T: Real> InputModel<T> for History<T> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TwiceRate<T> {
     start: Option<Vec3<T>>,
     middle: Option<(Vec3<T>, T)>,
@@ -386,6 +390,7 @@ impl<T: Real> InputModel<T> for TwiceRate<T> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GaussPoints<T> {
     first: Option<(Vec3<T>, T)>,
 }
@@ -449,6 +454,7 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DeltaAngles<T, C> {
     correction: C,
     pending: [Vec3<T>; 4],

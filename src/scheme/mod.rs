@@ -137,6 +137,7 @@ pub(crate) fn check_step_angle<T: Real, G: Segment<T>>(
 /// Any scheme, chosen at run time (the host lab's way; firmware names one type instead).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SchemeKind {
     /// [`Euler`].
     Euler,

@@ -1,0 +1,1 @@
+//! Nothing: this crate only has the header test (`tests/header.rs`).
