@@ -14,8 +14,9 @@
 
 /**
  * Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
+ * 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
  */
-#define QUATPROP_ABI_VERSION 1
+#define QUATPROP_ABI_VERSION 2
 
 /**
  * `uint64_t` words in `quatprop_t`.
@@ -33,42 +34,43 @@
 #define QUATPROP_STATE_ALIGN 8
 
 /**
- * Explicit Euler (`quatprop_config_t::scheme`).
+ * Explicit Euler (`quatprop_config_t::scheme`), order 1. Step-angle bound (the largest `dt * max|w|` a
+ * step may have, rad; a longer step is refused with `QUATPROP_STEP_ANGLE_BEYOND_STABILITY`): 2.000.
  */
 #define QUATPROP_SCHEME_EULER 0
 
 /**
- * Heun's second-order Runge–Kutta.
+ * Heun's second-order Runge–Kutta. Step-angle bound: 2.828 rad.
  */
 #define QUATPROP_SCHEME_RK2 1
 
 /**
- * Kutta's third-order Runge–Kutta.
+ * Kutta's third-order Runge–Kutta. Step-angle bound: 3.464 rad.
  */
 #define QUATPROP_SCHEME_RK3 2
 
 /**
- * Classical fourth-order Runge–Kutta.
+ * Classical fourth-order Runge–Kutta. Step-angle bound: 5.657 rad.
  */
 #define QUATPROP_SCHEME_RK4 3
 
 /**
- * Fifth-order Runge–Kutta.
+ * Fifth-order Runge–Kutta. Step-angle bound: 1.994 rad.
  */
 #define QUATPROP_SCHEME_RK5 4
 
 /**
- * Exponential map of the step's rotation vector (recommended).
+ * Exponential map of the step's rotation vector (recommended), order 4 with HISTORY. No step-angle bound.
  */
 #define QUATPROP_SCHEME_EXPMAP 5
 
 /**
- * Fourth-order Magnus.
+ * Fourth-order Magnus. No step-angle bound.
  */
 #define QUATPROP_SCHEME_MAGNUS4 6
 
 /**
- * Fourth-order commutator-free.
+ * Fourth-order commutator-free. No step-angle bound.
  */
 #define QUATPROP_SCHEME_CF4 7
 
@@ -534,7 +536,8 @@ quatprop_status_t quatprop_set_axis_remap(quatprop_t *s, uint32_t remap);
 quatprop_status_t quatprop_set_alignment_matrix(quatprop_t *s, const float *r);
 
 /**
- * Subtracts a fixed bias `b[3]` (rad/s, body axes) from every rate sample; replaces any estimator.
+ * Subtracts a fixed bias `b[3]` (rad/s, body axes, finite) from every rate sample; replaces any
+ * estimator.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `b` NULL or 3 readable floats.
@@ -542,8 +545,9 @@ quatprop_status_t quatprop_set_alignment_matrix(quatprop_t *s, const float *r);
 quatprop_status_t quatprop_set_fixed_bias(quatprop_t *s, const float *b);
 
 /**
- * Learns the bias while the body is still: windows of `window` samples in which every axis stays within
- * `gate` rad/s of the bias, averaged over the last `memory` windows (64 is the Rust default).
+ * Learns the bias while the body is still: windows of `window` samples (1 to 2^31 - 1) in which every
+ * axis stays within `gate` rad/s (finite, > 0) of the bias, averaged over the last `memory` windows
+ * (at least 1; 64 is the Rust default). `QUATPROP_INVALID_ESTIMATOR` otherwise.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
@@ -571,8 +575,8 @@ quatprop_status_t quatprop_get_bias(const quatprop_t *s,
                                     float *out);
 
 /**
- * Sets the fixed sample period (s) that times the bursts (`quatprop_push_*_burst`); time stays exact over
- * any number of samples (the period's float rounding is carried).
+ * Sets the fixed sample period (s; finite, > 0) that times the bursts (`quatprop_push_*_burst`); time
+ * stays exact over any number of samples (the period's float rounding is carried).
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
@@ -581,7 +585,8 @@ quatprop_status_t quatprop_set_fixed_period(quatprop_t *s,
                                             double period);
 
 /**
- * Sets the tick clock of the timed bursts: a counter at `frequency` Hz, `bits` wide (1 to 32; it wraps).
+ * Sets the tick clock of the timed bursts: a counter at `frequency` Hz (finite, > 0), `bits` wide (1 to
+ * 32; it wraps).
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
@@ -592,37 +597,39 @@ quatprop_status_t quatprop_set_tick_clock(quatprop_t *s,
 
 /**
  * Pushes one rate sample (rad/s, sensor axes: alignment and bias apply) taken `dt` s after the previous
- * one. On error nothing changes.
+ * one (`dt` finite, > 0, at most FLT_MAX; used in single precision). The step angle `dt * max|w|` must be
+ * within the scheme's bound (`QUATPROP_SCHEME_*`). On error nothing changes.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `sample` NULL or readable.
  */
 quatprop_status_t quatprop_push_rate(quatprop_t *s,
                                      const quatprop_sample_t *sample,
-                                     float dt);
+                                     double dt);
 
 /**
  * Pushes one sample of raw counts `counts[3]` (sensor axes: count scale, alignment and bias apply) taken
- * `dt` s after the previous one. A count at -32768 or 32767 marks the sample saturated. On error nothing
- * changes.
+ * `dt` s after the previous one (as for `quatprop_push_rate`). A count at -32768 or 32767 marks the sample
+ * saturated. On error nothing changes.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or 3 readable int16s.
  */
 quatprop_status_t quatprop_push_counts(quatprop_t *s,
                                        const int16_t *counts,
-                                       float dt);
+                                       double dt);
 
 /**
  * Pushes one delta angle (rad over one sample, sensor axes: the alignment applies, the bias does not)
- * taken `dt` s after the previous one; needs `QUATPROP_INPUT_DELTA_ANGLES`. On error nothing changes.
+ * taken `dt` s after the previous one (as for `quatprop_push_rate`); needs `QUATPROP_INPUT_DELTA_ANGLES`.
+ * On error nothing changes.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `sample` NULL or readable.
  */
 quatprop_status_t quatprop_push_delta(quatprop_t *s,
                                       const quatprop_sample_t *sample,
-                                      float dt);
+                                      double dt);
 
 /**
  * Pushes a FIFO burst of `n` raw-count samples `counts[3 * n]` (x, y, z per sample, sensor axes) taken at

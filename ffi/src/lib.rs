@@ -35,7 +35,8 @@ use quatprop::{DeltaAngle, Error, GyroSample, Quat};
 use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 
 /// Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
-pub const QUATPROP_ABI_VERSION: u32 = 1;
+/// 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
+pub const QUATPROP_ABI_VERSION: u32 = 2;
 /// `uint64_t` words in `quatprop_t`.
 pub const QUATPROP_STATE_WORDS: usize = 48;
 /// Size of `quatprop_t` in bytes (same on every target).
@@ -213,21 +214,22 @@ fn done(r: Result<(), Fail>) -> quatprop_status_t {
     }
 }
 
-/// Explicit Euler (`quatprop_config_t::scheme`).
+/// Explicit Euler (`quatprop_config_t::scheme`), order 1. Step-angle bound (the largest `dt * max|w|` a
+/// step may have, rad; a longer step is refused with `QUATPROP_STEP_ANGLE_BEYOND_STABILITY`): 2.000.
 pub const QUATPROP_SCHEME_EULER: u32 = 0;
-/// Heun's second-order Runge–Kutta.
+/// Heun's second-order Runge–Kutta. Step-angle bound: 2.828 rad.
 pub const QUATPROP_SCHEME_RK2: u32 = 1;
-/// Kutta's third-order Runge–Kutta.
+/// Kutta's third-order Runge–Kutta. Step-angle bound: 3.464 rad.
 pub const QUATPROP_SCHEME_RK3: u32 = 2;
-/// Classical fourth-order Runge–Kutta.
+/// Classical fourth-order Runge–Kutta. Step-angle bound: 5.657 rad.
 pub const QUATPROP_SCHEME_RK4: u32 = 3;
-/// Fifth-order Runge–Kutta.
+/// Fifth-order Runge–Kutta. Step-angle bound: 1.994 rad.
 pub const QUATPROP_SCHEME_RK5: u32 = 4;
-/// Exponential map of the step's rotation vector (recommended).
+/// Exponential map of the step's rotation vector (recommended), order 4 with HISTORY. No step-angle bound.
 pub const QUATPROP_SCHEME_EXPMAP: u32 = 5;
-/// Fourth-order Magnus.
+/// Fourth-order Magnus. No step-angle bound.
 pub const QUATPROP_SCHEME_MAGNUS4: u32 = 6;
-/// Fourth-order commutator-free.
+/// Fourth-order commutator-free. No step-angle bound.
 pub const QUATPROP_SCHEME_CF4: u32 = 7;
 
 /// No stabilization (`quatprop_config_t::stabilizer`).
@@ -683,7 +685,8 @@ pub unsafe extern "C" fn quatprop_set_alignment_matrix(
     }
 }
 
-/// Subtracts a fixed bias `b[3]` (rad/s, body axes) from every rate sample; replaces any estimator.
+/// Subtracts a fixed bias `b[3]` (rad/s, body axes, finite) from every rate sample; replaces any
+/// estimator.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `b` NULL or 3 readable floats.
@@ -706,8 +709,9 @@ pub unsafe extern "C" fn quatprop_set_fixed_bias(
     }
 }
 
-/// Learns the bias while the body is still: windows of `window` samples in which every axis stays within
-/// `gate` rad/s of the bias, averaged over the last `memory` windows (64 is the Rust default).
+/// Learns the bias while the body is still: windows of `window` samples (1 to 2^31 - 1) in which every
+/// axis stays within `gate` rad/s (finite, > 0) of the bias, averaged over the last `memory` windows
+/// (at least 1; 64 is the Rust default). `QUATPROP_INVALID_ESTIMATOR` otherwise.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
@@ -764,8 +768,8 @@ pub unsafe extern "C" fn quatprop_get_bias(
     }
 }
 
-/// Sets the fixed sample period (s) that times the bursts (`quatprop_push_*_burst`); time stays exact over
-/// any number of samples (the period's float rounding is carried).
+/// Sets the fixed sample period (s; finite, > 0) that times the bursts (`quatprop_push_*_burst`); time
+/// stays exact over any number of samples (the period's float rounding is carried).
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
@@ -783,7 +787,8 @@ pub unsafe extern "C" fn quatprop_set_fixed_period(
     }
 }
 
-/// Sets the tick clock of the timed bursts: a counter at `frequency` Hz, `bits` wide (1 to 32; it wraps).
+/// Sets the tick clock of the timed bursts: a counter at `frequency` Hz (finite, > 0), `bits` wide (1 to
+/// 32; it wraps).
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
@@ -803,7 +808,8 @@ pub unsafe extern "C" fn quatprop_set_tick_clock(
 }
 
 /// Pushes one rate sample (rad/s, sensor axes: alignment and bias apply) taken `dt` s after the previous
-/// one. On error nothing changes.
+/// one (`dt` finite, > 0, at most FLT_MAX; used in single precision). The step angle `dt * max|w|` must be
+/// within the scheme's bound (`QUATPROP_SCHEME_*`). On error nothing changes.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `sample` NULL or readable.
@@ -811,7 +817,7 @@ pub unsafe extern "C" fn quatprop_set_tick_clock(
 pub unsafe extern "C" fn quatprop_push_rate(
     s: *mut quatprop_t,
     sample: *const quatprop_sample_t,
-    dt: f32,
+    dt: f64,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
     let v = match unsafe { read(sample) } {
@@ -823,12 +829,12 @@ pub unsafe extern "C" fn quatprop_push_rate(
         saturated: v.saturated != 0,
     };
     // SAFETY: forwarded contract.
-    unsafe { with(s, |st| one(st.rates(Rates::One(g), Time::Dt(dt)))) }
+    unsafe { with(s, |st| one(st.rates(Rates::One(g), Time::Dt(dt as f32)))) }
 }
 
 /// Pushes one sample of raw counts `counts[3]` (sensor axes: count scale, alignment and bias apply) taken
-/// `dt` s after the previous one. A count at -32768 or 32767 marks the sample saturated. On error nothing
-/// changes.
+/// `dt` s after the previous one (as for `quatprop_push_rate`). A count at -32768 or 32767 marks the sample
+/// saturated. On error nothing changes.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `counts` NULL or 3 readable int16s.
@@ -836,7 +842,7 @@ pub unsafe extern "C" fn quatprop_push_rate(
 pub unsafe extern "C" fn quatprop_push_counts(
     s: *mut quatprop_t,
     counts: *const i16,
-    dt: f32,
+    dt: f64,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
     let c = match unsafe { read(counts.cast::<[i16; 3]>()) } {
@@ -847,13 +853,14 @@ pub unsafe extern "C" fn quatprop_push_counts(
     unsafe {
         with(s, |st| {
             let scale = st.front.scale.ok_or(Fail::NotConfigured)?;
-            one(st.rates(Rates::One(scale.sample(c)), Time::Dt(dt)))
+            one(st.rates(Rates::One(scale.sample(c)), Time::Dt(dt as f32)))
         })
     }
 }
 
 /// Pushes one delta angle (rad over one sample, sensor axes: the alignment applies, the bias does not)
-/// taken `dt` s after the previous one; needs `QUATPROP_INPUT_DELTA_ANGLES`. On error nothing changes.
+/// taken `dt` s after the previous one (as for `quatprop_push_rate`); needs `QUATPROP_INPUT_DELTA_ANGLES`.
+/// On error nothing changes.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `sample` NULL or readable.
@@ -861,7 +868,7 @@ pub unsafe extern "C" fn quatprop_push_counts(
 pub unsafe extern "C" fn quatprop_push_delta(
     s: *mut quatprop_t,
     sample: *const quatprop_sample_t,
-    dt: f32,
+    dt: f64,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
     let v = match unsafe { read(sample) } {
@@ -873,7 +880,7 @@ pub unsafe extern "C" fn quatprop_push_delta(
         saturated: v.saturated != 0,
     };
     // SAFETY: forwarded contract.
-    unsafe { with(s, |st| one(st.deltas(Deltas::One(d), Time::Dt(dt)))) }
+    unsafe { with(s, |st| one(st.deltas(Deltas::One(d), Time::Dt(dt as f32)))) }
 }
 
 /// A one-sample loop's result as a call's.

@@ -60,3 +60,30 @@ fn a_state_round_trips_and_any_changed_byte_is_caught() {
     }
     assert_eq!(caught, 3 * QUATPROP_STATE_SIZE);
 }
+
+/// The step-angle bounds the header states for each scheme are the core's.
+#[test]
+fn the_header_states_each_schemes_step_angle_bound() {
+    use quatprop::scheme::SchemeKind;
+    let src = include_str!("lib.rs");
+    let consts = [
+        "EULER", "RK2", "RK3", "RK4", "RK5", "EXPMAP", "MAGNUS4", "CF4",
+    ];
+    for (kind, name) in SchemeKind::ALL.into_iter().zip(consts) {
+        let decl = format!("pub const QUATPROP_SCHEME_{name}: u32");
+        let at = src.find(&decl).expect("constant");
+        // The doc comment right above the declaration.
+        let doc: String = src[..at]
+            .lines()
+            .rev()
+            .take_while(|l| l.starts_with("///"))
+            .collect();
+        let limit = kind.information().step_angle_limit;
+        let stated = if limit.is_finite() {
+            format!("{limit:.3}")
+        } else {
+            "No step-angle bound".to_string()
+        };
+        assert!(doc.contains(&stated), "{name}: {stated} not in {doc:?}");
+    }
+}
