@@ -22,10 +22,13 @@ use crate::input::Segment;
 use crate::scheme::Scheme;
 use crate::{Quat, Real};
 
-/// Adds increments to the attitude.
-pub trait Accumulator<T: Real>: Copy {
+/// Adds increments to the attitude: [`Plain`], [`Kahan`] or [`FloatFloat`] (sealed: the float-float
+/// accumulator's exact products reach into the schemes and input models, so the set is the library's).
+pub trait Accumulator<T: Real>: Copy + sealed::Sealed {
+    /// (Precision plumbing of [`FloatFloat`]; hidden, no stability promise.)
     /// `true` if [`Accumulator::advance`] uses the step's low parts ([`Segment::half_angle_split`]): the
     /// propagator then asks the input model for them ([`crate::input::InputModel::accept_split`]).
+    #[doc(hidden)]
     const CARRIES_LOW_PARTS: bool = false;
 
     /// Returns `q + d`, updating any internal compensation.
@@ -46,6 +49,13 @@ pub trait Accumulator<T: Real>: Copy {
 
     /// Forgets any compensation (after the attitude is replaced).
     fn reset(&mut self);
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::Plain {}
+    impl<T> Sealed for super::Kahan<T> {}
+    impl<T> Sealed for super::FloatFloat<T> {}
 }
 
 /// Plain addition `q + Δ`.

@@ -41,6 +41,7 @@ pub trait ConingCorrection: Copy {
     /// [`crate::accumulate::FloatFloat`] carries. By default no low part; every correction here
     /// keeps it.
     #[inline(always)]
+    #[doc(hidden)]
     fn rotation_vector_split<T: Real>(
         &self,
         previous: Option<Vec3<T>>,

@@ -17,11 +17,62 @@
 //! | [`GaussPoints`] | [`GyroSample`] | 2 samples at the Gauss points | 4 | pending |
 //! | [`DeltaAngles`] | [`DeltaAngle`] | as many increments as its [coning correction](coning) takes | see [`coning`] | steps or pending |
 //!
-//! A custom model implements [`InputModel`] and returns its own [`Segment`].
+//! A custom model implements [`InputModel`] (`accept` and `restart`; `start` has a default) and returns
+//! its own [`Segment`] (the rate function `rate_at`, its integral `half_angle`, and the bound
+//! `max_step_angle_squared` the stability check reads; the rest are optional shortcuts). For instance the
+//! mean of the two samples around each step, held over it:
+//!
+//! ```
+//! use quatprop::input::{InputModel, Segment};
+//! use quatprop::{scheme::ExpMap, stabilize::Off, Error, GyroSample, Propagator, Quat, Vec3};
+//!
+//! /// The mean of the previous and the newest sample, held over the step between them.
+//! #[derive(Clone, Copy, Default)]
+//! struct MeanOfTwo {
+//!     previous: Option<Vec3<f64>>,
+//! }
+//!
+//! /// A rate held over the step (rad/s).
+//! #[derive(Clone, Copy)]
+//! struct Held(Vec3<f64>);
+//!
+//! impl Segment<f64> for Held {
+//!     fn rate_at(&self, _c: f64) -> Vec3<f64> {
+//!         self.0
+//!     }
+//!     fn half_angle(&self, hh: f64) -> Vec3<f64> {
+//!         self.0 * hh
+//!     }
+//!     fn max_step_angle_squared(&self, h: f64) -> f64 {
+//!         (self.0 * h).norm_squared()
+//!     }
+//! }
+//!
+//! impl InputModel<f64> for MeanOfTwo {
+//!     type Sample = GyroSample<f64>;
+//!     type Segment = Held;
+//!     fn accept(&self, s: &GyroSample<f64>, dt: f64) -> Result<(Self, Option<(Held, f64)>), Error> {
+//!         if !s.rate.is_finite() {
+//!             return Err(Error::NonFiniteRate);
+//!         }
+//!         let step = self.previous.map(|w0| (Held((w0 + s.rate) * 0.5), dt));
+//!         Ok((MeanOfTwo { previous: Some(s.rate) }, step))
+//!     }
+//!     fn restart(&mut self) {
+//!         self.previous = None;
+//!     }
+//! }
+//!
+//! let mut p = Propagator::new(Quat::IDENTITY, ExpMap, MeanOfTwo::default(), Off)?;
+//! p.push(GyroSample::new(Vec3::new(0.0, 0.0, 0.0)), 0.5)?; // starts: no step
+//! p.push(GyroSample::new(Vec3::new(0.0, 0.0, 2.0)), 0.5)?; // mean 1 rad/s for 0.5 s
+//! assert!((p.attitude().z - 0.25_f64.sin()).abs() < 1e-15);
+//! # Ok::<(), Error>(())
+//! ```
 
 pub mod coning;
 mod models;
-pub(crate) mod segment;
+pub mod segment;
 
 pub use models::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
 
@@ -50,6 +101,7 @@ pub trait Segment<T: Real> {
     /// [`Segment::half_angle`] as an unevaluated sum `hi + lo`, `lo` holding the rounding of its final
     /// sum and product (TwoSum, TwoProduct): what [`crate::accumulate::FloatFloat`] carries. By default no
     /// low part. `hi` need not equal `half_angle` bit for bit.
+    #[doc(hidden)]
     #[inline(always)]
     fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
         (self.half_angle(hh), Vec3::ZERO)
@@ -100,6 +152,7 @@ pub trait InputModel<T: Real>: Copy {
     ///
     /// # Errors
     /// As [`InputModel::accept`].
+    #[doc(hidden)]
     #[allow(clippy::type_complexity)]
     #[inline(always)]
     fn accept_split(

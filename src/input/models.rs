@@ -118,7 +118,7 @@ impl<T: Real> InputModel<T> for Linear<T> {
 ///
 /// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
 /// third a quadratic one (third). Equally spaced samples (each spacing within
-/// [`History::SPACING_TOLERANCE`] of the next) use constant weights; jittered ones the cubic through the
+/// 2⁻²⁰ (relative) of the next) use constant weights; jittered ones the cubic through the
 /// samples at their true times (each `dt` as given), still fourth order. A gap — a `dt` more than
 /// [`History::GAP_RATIO`] times the previous one, or less than its inverse (a refused or dropped sample, a
 /// restarted sensor) — restarts the history at the last sample, so that interval is integrated linearly
@@ -150,7 +150,7 @@ pub struct History<T> {
     /// sample arrives, and reused by the next two steps (bit for bit the difference they would form).
     d: [Vec3<T>; 2],
     count: u8,
-    /// Three samples are kept and their two spacings are within [`History::SPACING_TOLERANCE`] of each
+    /// Three samples are kept and their two spacings are within 2⁻²⁰ (relative) of each
     /// other: a next `dt` within it of the later one makes a step with the constant weights (one test
     /// in the steady state instead of two).
     uniform: bool,
@@ -165,7 +165,7 @@ impl<T: Real> History<T> {
     /// ([`crate::frontend::FixedPeriod`]) varies an f32 `dt` by one ulp (2⁻²³ relative), inside it;
     /// treating the step's three spacings as equal when they differ by δ (at most about twice the
     /// tolerance) errs by about `δ·h²·|ω'|` per step, below f32 rounding at this tolerance.
-    pub const SPACING_TOLERANCE: f64 = 1.0 / 1_048_576.0;
+    pub(crate) const SPACING_TOLERANCE: f64 = 1.0 / 1_048_576.0;
 
     /// A `dt` more than this times the previous one (or less than its inverse) is a gap: the history
     /// restarts.
@@ -396,9 +396,6 @@ pub struct GaussPoints<T> {
 }
 
 impl<T: Real> GaussPoints<T> {
-    /// The two Gauss–Legendre nodes as fractions of the step, `½ ∓ √3/6`: where the samples belong.
-    pub const NODES: [f64; 2] = [crate::gauss::NODE_1, crate::gauss::NODE_2];
-
     /// A model waiting for the first Gauss sample of a step.
     #[must_use]
     pub const fn new() -> Self {

@@ -1,5 +1,7 @@
-//! The rate functions the input models hand to the schemes. Crate-private: a custom input model brings
-//! its own [`Segment`].
+//! The rate functions the built-in input models hand to the schemes: each model's
+//! [`InputModel::Segment`](super::InputModel::Segment), named here so that a propagator's type can be
+//! written out. They are built by their input models only; a custom input model brings its own [`Segment`]
+//! (see [`crate::input`]).
 
 use super::Segment;
 use crate::exact::{two_product_vec, two_sum_vec};
@@ -323,7 +325,7 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
     }
     /// The two samples that bound the step: every earlier sample bounded a step of its own and was checked
     /// there (the start-up sample, which closes no step, is `w_k` of the next), at a spacing within
-    /// [`crate::input::History::SPACING_TOLERANCE`] of this one for the constant weights.
+    /// 2⁻²⁰ (relative) of this one for the constant weights.
     #[inline(always)]
     fn max_step_angle_squared(&self, h: T) -> T {
         let [w2, w3] = match self {

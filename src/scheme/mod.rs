@@ -107,6 +107,7 @@ pub trait Scheme<T: Real>: Copy {
     /// [`Baumgarte`], whose term depends on `|q|`, this holds for a unit `q`). What
     /// [`crate::accumulate::FloatFloat`] multiplies exactly. By default [`Scheme::increment`] from the
     /// identity, with no low part; the exponential maps keep the rounding of the rotation vector in `lo`.
+    #[doc(hidden)]
     #[inline(always)]
     fn right_factor<G: Segment<T>>(&self, segment: &G, h: T) -> (Quat<T>, Quat<T>) {
         (self.increment(Quat::IDENTITY, segment, h), Quat::ZERO)
