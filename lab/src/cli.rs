@@ -1,16 +1,19 @@
-//! The command line (clap derive): one sub-command per study, `report` for all of them; typed values
-//! parsed and checked before anything runs; `quatprop-lab help <command>` for each command's options.
+//! The command line (clap): the global options (`--out`, `--quick`, `--full`), `report` (every study in the
+//! registry's order) and one sub-command per study, generated from the registry (`studies::ALL`); typed
+//! values parsed and checked before anything runs; `quatprop-lab help <command>` for each command's options.
+//! Also the argument types several studies share ([`Horizon`], [`Sweep`]) and their value parsers.
 
-use crate::configs::{self, Input, Stab};
-use crate::work_precision::{Options, Precision};
-use crate::{
-    atlas, baumgarte_sweep, bias, coning_drift, geiger, long_horizon, scene_table, scenes, sensor,
-    time_base, work_precision, Ctx,
-};
-use clap::{Args, Parser, Subcommand};
+use crate::configs::{self, Input, Precision, Stab};
+use crate::report::Ctx;
+use crate::scenes;
+use crate::studies;
+use crate::study::Scale;
+use clap::{ArgMatches, Args, CommandFactory as _, FromArgMatches, Parser};
 use quatprop::scheme::SchemeKind;
+use std::ffi::OsString;
 use std::path::PathBuf;
 
+/// The global options (every sub-command takes them).
 #[derive(Parser, Debug)]
 #[command(
     name = "quatprop-lab",
@@ -18,45 +21,106 @@ use std::path::PathBuf;
     version
 )]
 pub struct Cli {
-    #[command(subcommand)]
-    pub command: Command,
     /// Output directory (README.md, plots, CSV).
     #[arg(long, global = true, default_value = "report")]
     pub out: PathBuf,
-    /// Small grids and horizons (what CI runs).
-    #[arg(long, global = true)]
+    /// Small grids and horizons: seconds per study (what CI runs).
+    #[arg(long, global = true, conflicts_with = "full")]
     pub quick: bool,
+    /// The sizes of record (docs/report): the longest grids, horizons and timing runs.
+    #[arg(long, global = true)]
+    pub full: bool,
 }
 
-#[derive(Subcommand, Debug)]
-pub enum Command {
-    /// Every study below: DIR/README.md + plots (SVG, PNG) + CSV.
-    Report(Horizon),
-    /// The seed paper's Fig. 1 and Fig. 2, and Baumgarte k swept to divergence in propagation.
-    Geiger,
-    /// Per-step norm factor and error against the step angle, measured stability bounds.
-    Atlas,
-    /// Error against cost per scene and precision, quatprop against the peers.
-    WorkPrecision(Sweep),
-    /// Every scene × the comparison set at 1 kHz, f32.
-    Scenes,
-    /// Sensor realism: noise, bias, 16-bit counts, saturation, dropped samples, dt jitter.
-    Sensor(Sweep),
-    /// Coning drift coefficient of every rate scheme and input model.
-    ConingDrift,
-    /// Bias estimation: quatprop's BiasEstimator against Fusion's FusionOffset (and its C code with
-    /// `--features fusion-c`).
-    Bias,
-    /// An f64 state fed f32 samples with dt = f32(0.001) or from FixedPeriod, against physical time.
-    TimeBase(Horizon),
-    /// f32 own error and error against physical time to 1e8 steps (1e9 with --long).
-    LongHorizon(Horizon),
+impl Cli {
+    pub fn scale(&self) -> Scale {
+        if self.quick {
+            Scale::Quick
+        } else if self.full {
+            Scale::Full
+        } else {
+            Scale::Default
+        }
+    }
+}
+
+/// The arguments of `report` (handed to the studies that take them: `Study::report_args`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct ReportArgs {
+    #[command(flatten)]
+    pub horizon: Horizon,
+}
+
+/// The whole command line: the global options, `report`, and every study of the registry.
+pub fn command() -> clap::Command {
+    let order: Vec<String> = studies::ALL
+        .iter()
+        .map(|s| format!("  {}: {}", s.name(), s.about()))
+        .collect();
+    let report = ReportArgs::augment_args(clap::Command::new("report"))
+        .about("Every study below: DIR/README.md + plots (SVG, PNG) + CSV.")
+        .long_about(format!(
+            "Every study, in this order, into DIR/README.md + plots (SVG, PNG) + CSV:\n{}",
+            order.join("\n")
+        ));
+    studies::ALL
+        .iter()
+        .fold(Cli::command().subcommand(report), |c, s| {
+            c.subcommand(s.command())
+        })
+        .subcommand_required(true)
+        .arg_required_else_help(true)
+}
+
+/// A parsed command line.
+#[derive(Debug)]
+pub struct Invocation {
+    pub cli: Cli,
+    matches: ArgMatches,
+}
+
+/// Parses a command line (the program's name first).
+pub fn parse_from<I, T>(args: I) -> Result<Invocation, clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let matches = command().try_get_matches_from(args)?;
+    let cli = Cli::from_arg_matches(&matches)?;
+    Ok(Invocation { cli, matches })
+}
+
+impl Invocation {
+    /// The sub-command's name and arguments.
+    pub fn subcommand(&self) -> (&str, &ArgMatches) {
+        self.matches
+            .subcommand()
+            .expect("clap requires a sub-command")
+    }
+
+    /// Runs the sub-command: `report` runs every study in the registry's order.
+    pub fn run(&self, ctx: &mut Ctx) -> Result<(), clap::Error> {
+        match self.subcommand() {
+            ("report", m) => {
+                let report = ReportArgs::from_arg_matches(m)?;
+                for s in studies::ALL {
+                    s.run_in_report(ctx, &report);
+                }
+                Ok(())
+            }
+            (name, m) => studies::ALL
+                .iter()
+                .find(|s| s.name() == name)
+                .expect("every sub-command but report is a study of the registry")
+                .run_matches(ctx, m),
+        }
+    }
 }
 
 /// Step counts of the long runs.
 #[derive(Args, Debug, Clone, Default)]
 pub struct Horizon {
-    /// To 1e9 steps instead of 1e8.
+    /// To 1e9 steps (instead of 1e7 at the default scale, 1e8 with --full).
     #[arg(long)]
     pub long: bool,
     /// Steps (at least 1e3; `1e7` and `10000000` both work); overrides --long and --quick.
@@ -173,131 +237,36 @@ fn parse_precision(s: &str) -> Result<Precision, String> {
     }
 }
 
-impl Sweep {
-    fn options(&self, quick: bool) -> Options {
-        Options {
-            scenes: self.scenes.clone(),
-            precisions: self.precision.clone(),
-            methods: self.schemes.clone(),
-            stabs: self.stabilizers.clone(),
-            inputs: self.inputs.clone(),
-            rates: self.rates.clone(),
-            horizon: self.horizon,
-            quick,
-        }
-    }
-}
-
 impl Horizon {
-    fn steps(&self, quick: bool) -> u64 {
-        self.steps.unwrap_or(if quick {
-            1_000_000
-        } else if self.long {
-            1_000_000_000
-        } else {
-            100_000_000
+    /// Steps at the default scale: four decades, the last two for the growth exponents.
+    pub const DEFAULT_STEPS: u64 = 10_000_000;
+
+    /// The step count: `--steps`, else by scale (`--long`: 1e9 unless `--quick`).
+    pub fn steps(&self, scale: Scale) -> u64 {
+        self.steps.unwrap_or(match scale {
+            Scale::Quick => 1_000_000,
+            _ if self.long => 1_000_000_000,
+            Scale::Default => Self::DEFAULT_STEPS,
+            Scale::Full => 100_000_000,
         })
     }
-}
-
-/// Runs the command's studies; their report sections in order.
-pub fn run(cli: &Cli, ctx: &mut Ctx) -> Vec<String> {
-    let quick = cli.quick;
-    let (all, sweep, horizon) = match &cli.command {
-        Command::Report(h) => (true, Sweep::default(), h.clone()),
-        Command::WorkPrecision(s) | Command::Sensor(s) => (false, s.clone(), Horizon::default()),
-        Command::TimeBase(h) | Command::LongHorizon(h) => (false, Sweep::default(), h.clone()),
-        _ => (false, Sweep::default(), Horizon::default()),
-    };
-    let is = |f: fn(&Command) -> bool| all || f(&cli.command);
-    let opt = sweep.options(quick);
-    let total = horizon.steps(quick);
-    let mut sections = Vec::new();
-    let mut run = |ctx: &mut Ctx, name: &'static str, f: &mut dyn FnMut(&mut Ctx) -> String| {
-        ctx.bar.set_message(name);
-        let clock = crate::timing::Clock::start();
-        let s = f(ctx);
-        let row = clock.row(name);
-        ctx.bar.suspend(|| {
-            eprintln!(
-                "{name}: done in {:.1} s (CPU {:.1} s)",
-                row.wall_s, row.cpu_s
-            )
-        });
-        ctx.times.push(row);
-        sections.push(s);
-    };
-    // The rigid bodies' references are tabulated once, long enough for every study.
-    let catalogue = scenes::catalogue(opt.horizon.unwrap_or(0.0).max(70.0));
-    let coning = scenes::Coning;
-    if is(|c| matches!(c, Command::Geiger)) {
-        run(ctx, "geiger fig 1", &mut geiger::figure1);
-        run(ctx, "geiger fig 2", &mut |c| geiger::figure2(c, quick));
-        run(ctx, "baumgarte sweep", &mut |c| {
-            baumgarte_sweep::baumgarte_sweep(c, quick)
-        });
-    }
-    if is(|c| matches!(c, Command::Atlas)) {
-        run(ctx, "stability atlas", &mut |c| atlas::atlas(c, quick));
-    }
-    if is(|c| matches!(c, Command::WorkPrecision(_))) {
-        if opt.scenes.is_empty() || opt.scenes.iter().any(|s| s == "coning") {
-            let mut o = opt.clone();
-            o.precisions = vec![Precision::F32];
-            run(ctx, "work-precision", &mut |c| {
-                work_precision::headline(c, &coning, &o)
-            });
-        }
-        run(ctx, "wp per scene", &mut |c| {
-            work_precision::per_scene(c, &catalogue, &opt)
-        });
-        if opt.scenes.is_empty() {
-            run(ctx, "wp stabilizers", &mut |c| {
-                work_precision::stabilizers(c, &coning, &opt)
-            });
-            run(ctx, "wp grid + M4F", &mut |c| {
-                work_precision::grid_with_m4f(c, &coning, &opt)
-            });
-        }
-    }
-    if is(|c| matches!(c, Command::Scenes)) {
-        run(ctx, "scenes", &mut |c| {
-            scene_table::scene_table(c, &catalogue, quick)
-        });
-    }
-    if is(|c| matches!(c, Command::Sensor(_))) {
-        run(ctx, "sensor realism", &mut |c| {
-            sensor::sensor_study(c, &catalogue, &opt)
-        });
-    }
-    if is(|c| matches!(c, Command::ConingDrift)) {
-        run(ctx, "coning drift", &mut |c| {
-            coning_drift::coning_drift(c, quick)
-        });
-    }
-    if is(|c| matches!(c, Command::Bias)) {
-        run(ctx, "bias estimation", &mut |c| bias::bias_study(c, quick));
-    }
-    if is(|c| matches!(c, Command::TimeBase(_))) {
-        run(ctx, "time base", &mut |c| time_base::time_base(c, total));
-    }
-    if is(|c| matches!(c, Command::LongHorizon(_))) {
-        run(ctx, "long horizon", &mut |c| {
-            long_horizon::long_horizon(c, total)
-        });
-    }
-    sections
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::CommandFactory as _;
+
+    fn sweep_of(args: &[&str]) -> (Scale, Sweep) {
+        let inv = parse_from(args).unwrap();
+        let (name, m) = inv.subcommand();
+        assert_eq!(name, args[1]);
+        (inv.cli.scale(), Sweep::from_arg_matches(m).unwrap())
+    }
 
     #[test]
     fn command_line_is_consistent_and_typed() {
-        Cli::command().debug_assert();
-        let c = Cli::try_parse_from([
+        command().debug_assert();
+        let (scale, s) = sweep_of(&[
             "quatprop-lab",
             "work-precision",
             "--schemes",
@@ -307,15 +276,11 @@ mod tests {
             "--rates",
             "100,1000",
             "--quick",
-        ])
-        .unwrap();
-        let Command::WorkPrecision(s) = c.command else {
-            panic!("{c:?}")
-        };
+        ]);
         assert_eq!(s.schemes, vec![SchemeKind::Rk4, SchemeKind::ExpMap]);
         assert_eq!(s.stabilizers, vec![Stab::Every(16), Stab::Baumgarte(0.25)]);
         assert_eq!(s.rates, vec![100, 1000]);
-        assert!(c.quick);
+        assert_eq!(scale, Scale::Quick);
         for bad in [
             &["quatprop-lab", "work-precision", "--schemes", "Rk9"][..],
             &["quatprop-lab", "work-precision", "--rates", "0"],
@@ -323,13 +288,55 @@ mod tests {
             &["quatprop-lab", "sensor", "--scene", "nowhere"],
             &["quatprop-lab", "long-horizon", "--steps", "12"],
             &["quatprop-lab", "geiger", "--steps", "1e6"],
+            &["quatprop-lab", "report", "--quick", "--full"],
+            &["quatprop-lab", "no-such-study"],
+            &["quatprop-lab"],
         ] {
-            assert!(Cli::try_parse_from(bad).is_err(), "{bad:?}");
+            assert!(parse_from(bad).is_err(), "{bad:?}");
         }
-        let c = Cli::try_parse_from(["quatprop-lab", "long-horizon", "--steps", "1e7"]).unwrap();
-        let Command::LongHorizon(h) = c.command else {
-            panic!()
-        };
-        assert_eq!(h.steps(false), 10_000_000);
+        let inv = parse_from(["quatprop-lab", "long-horizon", "--steps", "1e7"]).unwrap();
+        let h = Horizon::from_arg_matches(inv.subcommand().1).unwrap();
+        assert_eq!(h.steps(Scale::Full), 10_000_000);
+        // The global options work before and after the sub-command.
+        let inv = parse_from(["quatprop-lab", "--full", "report", "--out", "x", "--long"]).unwrap();
+        assert_eq!(inv.cli.scale(), Scale::Full);
+        assert_eq!(inv.cli.out, PathBuf::from("x"));
+        let r = ReportArgs::from_arg_matches(inv.subcommand().1).unwrap();
+        assert_eq!(r.horizon.steps(Scale::Full), 1_000_000_000);
+        assert_eq!(r.horizon.steps(Scale::Quick), 1_000_000);
+        let inv = parse_from(["quatprop-lab", "report"]).unwrap();
+        assert_eq!(inv.cli.scale(), Scale::Default);
+        assert_eq!(inv.cli.out, PathBuf::from("report"));
+    }
+
+    /// Every study of the registry is a sub-command, with its one-line description as its help, beside
+    /// `report`; nothing else is.
+    #[test]
+    fn sub_commands_are_the_registry() {
+        let names: Vec<String> = command()
+            .get_subcommands()
+            .map(|c| c.get_name().to_string())
+            .collect();
+        let mut expected = vec!["report".to_string()];
+        expected.extend(studies::ALL.iter().map(|s| s.name().to_string()));
+        assert_eq!(names, expected);
+        let c = command();
+        let report = c.find_subcommand("report").unwrap();
+        assert_eq!(
+            report.get_about().map(|a| a.to_string()).as_deref(),
+            Some("Every study below: DIR/README.md + plots (SVG, PNG) + CSV.")
+        );
+        for s in studies::ALL {
+            let sub = c.find_subcommand(s.name()).unwrap();
+            assert_eq!(
+                sub.get_about().map(|a| a.to_string()),
+                Some(s.about().to_string())
+            );
+            assert!(
+                parse_from(["quatprop-lab", s.name()]).is_ok(),
+                "{}",
+                s.name()
+            );
+        }
     }
 }

@@ -260,6 +260,65 @@ impl Config {
     }
 }
 
+/// Floating-point precision of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Precision {
+    F32,
+    F64,
+}
+
+impl Precision {
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+}
+
+/// The comparison set of a scene: every scheme with linear input, the fourth-order sample-history and mid
+/// inputs, all with FirstOrder, and every peer.
+pub fn scheme_set() -> Vec<Config> {
+    let mut v: Vec<Config> = SchemeKind::ALL
+        .iter()
+        .map(|&m| Config::qp(m, Stab::FirstOrder, Input::Linear))
+        .collect();
+    for m in [SchemeKind::Rk4, SchemeKind::ExpMap, SchemeKind::Magnus4] {
+        v.push(Config::qp(m, Stab::FirstOrder, Input::History));
+    }
+    v.push(Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Mid));
+    let history = Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History);
+    v.push(history.with(Acc::Kahan));
+    v.push(history.with(Acc::FloatFloat));
+    v.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
+    v
+}
+
+/// Every scheme × stabilizer × input model (plain accumulator) that exists: Baumgarte with the Runge–Kutta
+/// schemes only.
+pub fn full_grid() -> Vec<Config> {
+    let mut v = Vec::new();
+    for m in SchemeKind::ALL {
+        for s in Stab::ALL {
+            for i in Input::ALL {
+                let c = Config::qp(m, s, i);
+                if c.exists() {
+                    v.push(c);
+                }
+            }
+        }
+    }
+    v
+}
+
+/// The error's variant name (`StepAngleBeyondStability`, …), "?" for none.
+pub fn error_kind(e: Option<Error>) -> String {
+    e.map_or(String::from("?"), |e| {
+        let s = format!("{e:?}");
+        s.split([' ', '{']).next().unwrap_or("").to_string()
+    })
+}
+
 /// Runs a configuration over a stream, sample by sample.
 pub trait Integrator<T> {
     /// Consumes samples (the first sample ever fed only starts the stream).

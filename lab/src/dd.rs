@@ -3,6 +3,10 @@
 
 use quatprop::{Quat, Vec3};
 
+/// The constant rate of the time-base and long-horizon studies: a skewed unit axis, |ω| = 1 rad/s before
+/// rounding to f32.
+pub const AXIS: Vec3<f64> = Vec3::new(0.36, -0.48, 0.80);
+
 /// `hi + lo` with |lo| ≤ ½ ulp(hi).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dd {

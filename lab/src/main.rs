@@ -1,172 +1,49 @@
 //! quatprop lab: the report a user runs to choose a scheme.
 //!
-//! `cargo run --release -p quatprop-lab -- report [--quick] [--out DIR]` writes `DIR/README.md` (default
-//! `report/`) with plots (SVG and PNG) and CSV files. Sub-commands run one study, with parameters (scene,
-//! schemes, stabilizers, inputs, precision, rates, horizon, steps): see `quatprop-lab help` and
+//! `cargo run --release -p quatprop-lab -- report [--quick | --full] [--out DIR]` writes `DIR/README.md`
+//! (default `report/`) with plots (SVG and PNG) and CSV files. Sub-commands run one study, with parameters
+//! (scene, schemes, stabilizers, inputs, precision, rates, horizon, steps): see `quatprop-lab help` and
 //! `quatprop-lab help <command>`. `--quick` shrinks every study (CI checks that each one runs and writes
-//! its figures).
+//! its files), `--full` runs the sizes of record. lab/README.md says how to add a study.
+//!
+//! Layout: `studies/` holds one file per study and the registry (`studies/mod.rs`); `study.rs` says what a
+//! study is; `cli.rs`, `report.rs` and `outputs.rs` are the command line, the report being written and the
+//! check of its files; the rest is what studies share: configurations and peers (`configs.rs`, `peers.rs`),
+//! scenes and their exact references (`scenes.rs`, `rigid_body.rs`, `dd.rs`), unchecked steps
+//! (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`, `timing.rs`), CSV and tables
+//! (`table.rs`) and plots (`plot.rs`).
 
-mod atlas;
-mod baumgarte_sweep;
-mod bias;
 mod cli;
 mod configs;
-mod coning_drift;
 mod dd;
-mod geiger;
-mod long_horizon;
+mod outputs;
 mod peers;
 mod plot;
 mod quiet;
-#[cfg(test)]
-mod registry;
+mod report;
 mod rigid_body;
-mod scene_table;
+mod rng;
 mod scenes;
-mod sensor;
+mod studies;
+mod study;
 mod table;
-mod time_base;
 mod timing;
 mod unchecked;
-mod work_precision;
-
-use clap::Parser as _;
-use std::path::{Path, PathBuf};
-use std::time::Instant;
-
-/// Output directory, progress and failure bookkeeping shared by the studies.
-pub struct Ctx {
-    out: PathBuf,
-    started: Instant,
-    /// A spinner on a terminal's stderr (the study and its work items); hidden when stderr is not a terminal.
-    bar: indicatif::ProgressBar,
-    failures: Vec<String>,
-    files: Vec<String>,
-    /// Each study's wall and CPU time, in order.
-    times: Vec<timing::StudyTimeRow>,
-    /// Whether host-time measurements ran at the core's quiet speed (the probe, watched over the process).
-    pub quiet: quiet::Quiet,
-}
-
-impl Ctx {
-    fn new(out: PathBuf) -> Self {
-        use std::io::IsTerminal as _;
-        let bar = if std::io::stderr().is_terminal() {
-            let b = indicatif::ProgressBar::new_spinner();
-            b.set_style(
-                indicatif::ProgressStyle::with_template(
-                    "[{elapsed:>4}] {msg:20} {pos:>7} work items",
-                )
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-            );
-            b.enable_steady_tick(std::time::Duration::from_millis(250));
-            b
-        } else {
-            indicatif::ProgressBar::hidden()
-        };
-        Self {
-            out,
-            started: Instant::now(),
-            bar,
-            failures: Vec::new(),
-            files: Vec::new(),
-            times: Vec::new(),
-            quiet: quiet::Quiet::new(),
-        }
-    }
-
-    /// One unit of work done (progress on a terminal only).
-    pub fn tick(&mut self) {
-        self.bar.inc(1);
-    }
-
-    /// The progress bar, for work that runs in parallel (`inc` from any thread).
-    pub fn progress(&self) -> indicatif::ProgressBar {
-        self.bar.clone()
-    }
-
-    /// Writes a CSV file of typed rows (failures are reported at the end).
-    pub fn rows<R: table::Csv>(&mut self, rows: &[R]) {
-        match table::write(&self.out.join(R::FILE), rows) {
-            Ok(()) => self.files.push(R::FILE.to_string()),
-            Err(e) => self.failures.push(e),
-        }
-    }
-
-    /// Writes a table's CSV and returns the table as rendered from the file read back (with its markers).
-    pub fn table<R: table::Table>(&mut self, rows: &[R]) -> String {
-        self.rows(rows);
-        table::rendered::<R>(&self.out).unwrap_or_else(|e| {
-            self.failures.push(e.clone());
-            format!("(table {} missing: {e})\n", R::FILE)
-        })
-    }
-
-    /// Runs a plotting closure that writes `<name>.svg` and `<name>.png`.
-    pub fn plot(&mut self, f: impl FnOnce(&Path) -> std::io::Result<()>) {
-        if let Err(e) = f(&self.out) {
-            self.failures.push(format!("plot: {e}"));
-        }
-    }
-}
-
-/// Writes `README.md` from the sections and checks that every figure they link exists; the failures.
-pub fn finish(ctx: &mut Ctx, sections: &[String], command: &str) -> Vec<String> {
-    let out = ctx.out.clone();
-    let times = std::mem::take(&mut ctx.times);
-    let run_time = format!(
-        "### Run time\n\nEach study's wall time and this process's CPU time over all its threads: CPU / wall \
-         near the thread count means the sweeps ran in parallel; near 1, serially (the timing measurements \
-         always are). On a shared machine wall time also counts the other processes; CPU time does not. \
-         `RAYON_NUM_THREADS=1` runs every sweep serially, for comparison.\n\n{}",
-        ctx.table(&times)
-    );
-    let md = format!(
-        "# quatprop lab report\n\nGenerated by `cargo run --release -p quatprop-lab{} -- {command}` in {:.1} s \
-         (wall time on this machine, shared; the accuracy sweeps on {} threads, every timing measurement \
-         serial).\n\n{}\n{run_time}\n\
-         CSV data: {}.\n",
-        if cfg!(feature = "fusion-c") {
-            " --features fusion-c"
-        } else {
-            ""
-        },
-        ctx.started.elapsed().as_secs_f64(),
-        rayon::current_num_threads(),
-        sections.join("\n"),
-        ctx.files.join(", ")
-    );
-    if let Err(e) = std::fs::write(out.join("README.md"), md) {
-        ctx.failures.push(format!("README.md: {e}"));
-    }
-    // Every figure the sections link must exist.
-    for s in sections {
-        for part in s.split("](").skip(1) {
-            let file = part.split(')').next().unwrap_or("");
-            if !out.join(file).exists() {
-                ctx.failures.push(format!("missing figure {file}"));
-            }
-            let svg = file.replace(".png", ".svg");
-            if !out.join(&svg).exists() {
-                ctx.failures.push(format!("missing figure {svg}"));
-            }
-        }
-    }
-    ctx.failures.clone()
-}
 
 fn main() {
-    let cli = cli::Cli::parse();
-    let out = cli.out.clone();
+    let inv = cli::parse_from(std::env::args_os()).unwrap_or_else(|e| e.exit());
+    let out = inv.cli.out.clone();
     if let Err(e) = std::fs::create_dir_all(&out) {
         eprintln!("cannot create {}: {e}", out.display());
         std::process::exit(1);
     }
-    let mut ctx = Ctx::new(out.clone());
-    let sections = cli::run(&cli, &mut ctx);
-    ctx.bar.finish_and_clear();
+    let mut ctx = report::Ctx::new(out.clone(), inv.cli.scale());
+    if let Err(e) = inv.run(&mut ctx) {
+        e.exit();
+    }
+    ctx.clear_progress();
     let command = std::env::args().skip(1).collect::<Vec<_>>().join(" ");
-    let failures = finish(&mut ctx, &sections, &command);
+    let failures = report::finish(&mut ctx, &command, inv.subcommand().0 == "report");
     if failures.is_empty() {
         eprintln!("report written to {}/README.md", out.display());
     } else {

@@ -13,8 +13,9 @@
 //! [`Quiet::PROBE_SAMPLES`] samples) timed around every measured run. The probe's least time in this
 //! process is its quiet speed; a run is *quiet* when the probes on both sides of it are within
 //! [`Quiet::TOLERANCE`] of that. A study keeps timing until every configuration has enough quiet runs, and
-//! the probe must have been watched for [`Quiet::CALIBRATION`] in the process before its least is trusted as
-//! the quiet speed (the quiet spells are short and can be absent for tens of seconds).
+//! the probe must have been watched for a while in the process (60 s at `--full`: the sweep's `Timing`)
+//! before its least is trusted as the quiet speed (the quiet spells are short and can be absent for tens of
+//! seconds).
 
 use quatprop::input::Linear;
 use quatprop::scheme::ExpMap;
@@ -44,9 +45,6 @@ impl Quiet {
     /// A run is quiet when the probes around it took at most this much more than the quiet speed. The two
     /// speeds are ~30 % apart; the probe's own spread within the quiet spell is under 8 %.
     pub const TOLERANCE: f64 = 0.10;
-    /// How long the probe is watched in a process before its least time is taken as the quiet speed.
-    pub const CALIBRATION: Duration = Duration::from_secs(60);
-
     pub fn new() -> Self {
         // A 1 Hz cone of half-angle 0.1 rad at 1 kHz (any smooth rate would do: only the speed is used).
         let rates = (0..Self::PROBE_SAMPLES)
@@ -96,12 +94,14 @@ impl Quiet {
         self.watched += d;
     }
 
-    /// Whether the probe has been watched long enough for its least time to be the quiet speed.
-    pub fn calibrated(&self) -> bool {
-        self.watched >= Self::CALIBRATION
+    /// Whether the probe has been watched for `need` in this process (its least time taken as the quiet
+    /// speed).
+    pub fn calibrated(&self, need: Duration) -> bool {
+        self.watched >= need
     }
 
     /// The quiet speed (ns per probe sample) seen so far.
+    #[cfg(test)]
     pub fn speed(&self) -> f64 {
         self.best
     }
@@ -119,8 +119,9 @@ mod tests {
         assert_eq!(q.speed(), p);
         assert!(q.is_quiet(p * (1.0 + 0.5 * Quiet::TOLERANCE)));
         assert!(!q.is_quiet(p * (1.0 + 2.0 * Quiet::TOLERANCE)));
-        assert!(!q.calibrated());
-        q.watched(Quiet::CALIBRATION);
-        assert!(q.calibrated());
+        let need = Duration::from_secs(60);
+        assert!(!q.calibrated(need));
+        q.watched(need);
+        assert!(q.calibrated(need));
     }
 }

@@ -7,29 +7,66 @@
 //! (`firmware/bench-m4f.csv`, written by `python3 firmware/figures.py`). The f32 arithmetic is bit-identical
 //! on the M4F and the host (tests/firmware_snapshot.rs), so the host's error is the target's error.
 
-use crate::configs::{scheme_name, Acc, Config, Input, LabReal, Peer, Sample, Stab};
+use crate::cli::Sweep;
+use crate::configs::{
+    error_kind, full_grid, scheme_name, scheme_set, Acc, Config, Input, LabReal, Peer, Precision, Stab,
+};
 use crate::plot::{plot, Axis, Series};
-use crate::scenes::Scene;
+use crate::report::Ctx;
+use crate::scenes::{self, attitude_error, stream, Scene};
+use crate::study::{CsvFile, Scale, Study};
 use crate::table::{self, cell, Csv, Table};
-use crate::Ctx;
 use quatprop::scheme::SchemeKind;
-use quatprop::{Error, Quat, Vec3};
+use quatprop::{Error, Quat};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
-/// Floating-point precision of a run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Precision {
-    F32,
-    F64,
-}
+/// Work–precision (sub-command `work-precision`).
+pub struct WorkPrecision;
 
-impl Precision {
-    pub fn name(self) -> &'static str {
-        match self {
-            Precision::F32 => "f32",
-            Precision::F64 => "f64",
+impl Study for WorkPrecision {
+    type Args = Sweep;
+    const NAME: &'static str = "work-precision";
+    const ABOUT: &'static str = "Error against cost per scene and precision, quatprop against the peers";
+    const CSV: &'static [CsvFile] = &[
+        CsvFile::table::<WpHeadline>(),
+        CsvFile::table::<EqualCostRow>(),
+        CsvFile::data::<WpScenes>(),
+        CsvFile::table::<SceneSummaryRow>(),
+        CsvFile::table::<WpStabilizers>(),
+        CsvFile::data::<WpGrid>(),
+        CsvFile::table::<M4fRow>().optional(),
+    ];
+    fn figures(&self) -> Vec<String> {
+        let mut v = vec!["work_precision_coning_f32".to_string()];
+        for s in scenes::catalogue(0.0) {
+            for p in [Precision::F32, Precision::F64] {
+                v.push(format!("wp_{}_{}", s.key(), p.name()));
+            }
+        }
+        for p in [Precision::F32, Precision::F64] {
+            v.push(format!("wp_stabilizers_coning_{}", p.name()));
+        }
+        if m4f_bench().is_some() {
+            v.push("wp_m4f_coning_f32".into());
+        }
+        v
+    }
+    fn run(&self, ctx: &mut Ctx, sweep: &Sweep) {
+        let opt = Options::new(sweep, ctx.scale);
+        // The rigid bodies' references are tabulated once, long enough for every sweep.
+        let catalogue = scenes::catalogue(opt.horizon.unwrap_or(0.0).max(70.0));
+        let coning = scenes::Coning;
+        if opt.scenes.is_empty() || opt.scenes.iter().any(|s| s == "coning") {
+            let mut o = opt.clone();
+            o.precisions = vec![Precision::F32];
+            ctx.section("work-precision", |c| headline(c, &coning, &o));
+        }
+        ctx.section("wp per scene", |c| per_scene(c, &catalogue, &opt));
+        if opt.scenes.is_empty() {
+            ctx.section("wp stabilizers", |c| stabilizers(c, &coning, &opt));
+            ctx.section("wp grid + M4F", |c| grid_with_m4f(c, &coning, &opt));
         }
     }
 }
@@ -57,36 +94,20 @@ impl Point {
     }
 }
 
-/// Attitude error (rad) of a possibly non-unit quaternion against the exact attitude.
-pub fn attitude_error<T: quatprop::Real>(q: Quat<T>, exact: Quat<f64>) -> f64 {
-    q.to_f64()
-        .normalized()
-        .map_or(f64::NAN, |u| u.angle_to(exact))
-}
-
-/// The stream of a scene at `hz`: samples ω(t_k) at t_k = k·dt with dt the precision's own value of 1/hz (so
-/// dt's rounding is not counted as integration error), and `n` (even) sample intervals.
-pub fn stream<T: LabReal>(scene: &dyn Scene, hz: u32, horizon: f64) -> (Vec<Sample<T>>, f64) {
-    let n = 2 * ((horizon * hz as f64) / 2.0).round().max(1.0) as usize;
-    let dt = <T as quatprop::Real>::from_f64(1.0 / hz as f64);
-    let dt64 = dt.to_f64();
-    let samples = (0..=n)
-        .map(|k| Sample {
-            w: Vec3::<T>::from_f64(scene.rate(k as f64 * dt64)),
-            dt,
-        })
-        .collect();
-    (samples, dt64)
-}
-
 /// How a sweep times its configurations.
 #[derive(Clone, Copy, Debug)]
 pub struct Timing {
     /// Quiet runs wanted for each configuration at each rate (its cost is the least of them).
     pub runs: usize,
-    /// Least wall time of a sweep's timed rounds; zero for a quick run, which times `runs` rounds whatever
-    /// the probe says (and skips the probe's calibration).
+    /// Least wall time of a sweep's timed rounds.
     pub window: Duration,
+    /// How long the quiet-core probe must have been watched in this process before its least time is
+    /// trusted as the quiet speed.
+    pub calibration: Duration,
+    /// A sweep stops timing after this long even if a configuration has too few quiet runs (its point's
+    /// `quiet_runs` says so, and the study's text). Zero: `runs` timed rounds whatever the probe says (and
+    /// no calibration).
+    pub cap: Duration,
 }
 
 impl Timing {
@@ -94,15 +115,24 @@ impl Timing {
     pub const QUICK: Timing = Timing {
         runs: 1,
         window: Duration::ZERO,
+        calibration: Duration::ZERO,
+        cap: Duration::ZERO,
     };
-    /// A full run: 15 quiet runs each, over at least 10 s.
+    /// The default scale: 3 quiet runs each, over at least 1 s, the probe watched for 10 s, at most 4 s per
+    /// sweep (a slow spell of the shared core, up to ~40 s, ends a sweep's timing at the cap).
+    pub const DEFAULT: Timing = Timing {
+        runs: 3,
+        window: Duration::from_secs(1),
+        calibration: Duration::from_secs(10),
+        cap: Duration::from_secs(4),
+    };
+    /// `--full`: 15 quiet runs each, over at least 10 s, the probe watched for 60 s, at most 180 s per sweep.
     pub const FULL: Timing = Timing {
         runs: 15,
         window: Duration::from_secs(10),
+        calibration: Duration::from_secs(60),
+        cap: Duration::from_secs(180),
     };
-    /// A sweep stops timing after this long even if a configuration has too few quiet runs (its point's
-    /// `quiet_runs` says so, and the study's text).
-    pub const CAP: Duration = Duration::from_secs(180);
 }
 
 /// Runs `configs` on `scene` at each rate: accuracy at 64 checkpoints, then timed runs of each
@@ -195,9 +225,9 @@ pub fn sweep<T: LabReal>(
         let enough = runs
             .iter()
             .all(|r| r.iter().filter(|&&(_, p)| quiet.is_quiet(p)).count() >= timing.runs);
-        if timing.window.is_zero()
-            || (enough && elapsed >= timing.window && quiet.calibrated())
-            || elapsed >= Timing::CAP
+        if timing.cap.is_zero()
+            || (enough && elapsed >= timing.window && quiet.calibrated(timing.calibration))
+            || elapsed >= timing.cap
         {
             break;
         }
@@ -240,9 +270,9 @@ pub fn timing_note(points: &[Point], timing: Timing) -> String {
         100.0 * crate::quiet::Quiet::TOLERANCE,
         timing.runs,
         timing.window.as_secs(),
-        crate::quiet::Quiet::CALIBRATION.as_secs(),
+        timing.calibration.as_secs(),
     );
-    if timing.window.is_zero() {
+    if timing.cap.is_zero() {
         "Host time: one timed run after a warm-up (`--quick`: not a measurement of record)."
             .to_string()
     } else if short.is_empty() {
@@ -250,45 +280,10 @@ pub fn timing_note(points: &[Point], timing: Timing) -> String {
     } else {
         format!(
             "{rule} **Fewer quiet runs** (after {} s; the cost is then the least of all runs): {}.",
-            Timing::CAP.as_secs(),
+            timing.cap.as_secs(),
             short.join(", ")
         )
     }
-}
-
-/// The comparison set of a scene: every scheme with linear input, the fourth-order sample-history and mid
-/// inputs, all with FirstOrder, and every peer.
-pub fn scheme_set() -> Vec<Config> {
-    let mut v: Vec<Config> = SchemeKind::ALL
-        .iter()
-        .map(|&m| Config::qp(m, Stab::FirstOrder, Input::Linear))
-        .collect();
-    for m in [SchemeKind::Rk4, SchemeKind::ExpMap, SchemeKind::Magnus4] {
-        v.push(Config::qp(m, Stab::FirstOrder, Input::History));
-    }
-    v.push(Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::Mid));
-    let history = Config::qp(SchemeKind::ExpMap, Stab::FirstOrder, Input::History);
-    v.push(history.with(Acc::Kahan));
-    v.push(history.with(Acc::FloatFloat));
-    v.extend(Peer::ALL.iter().map(|&p| Config::Peer(p)));
-    v
-}
-
-/// Every scheme × stabilizer × input model (plain accumulator) that exists: Baumgarte with the Runge–Kutta
-/// schemes only.
-pub fn full_grid() -> Vec<Config> {
-    let mut v = Vec::new();
-    for m in SchemeKind::ALL {
-        for s in Stab::ALL {
-            for i in Input::ALL {
-                let c = Config::qp(m, s, i);
-                if c.exists() {
-                    v.push(c);
-                }
-            }
-        }
-    }
-    v
 }
 
 /// One measured point as a CSV row (every work-precision CSV has these columns).
@@ -692,14 +687,6 @@ pub fn plot_points(ctx: &mut Ctx, name: &str, title: &str, points: &[Point]) {
     });
 }
 
-/// The error's variant name (`StepAngleBeyondStability`, …), "?" for none.
-pub fn error_kind(e: Option<Error>) -> String {
-    e.map_or(String::from("?"), |e| {
-        let s = format!("{e:?}");
-        s.split([' ', '{']).next().unwrap_or("").to_string()
-    })
-}
-
 fn fmt_err(p: &Point) -> String {
     if p.refused > 0 {
         format!(
@@ -738,10 +725,23 @@ pub struct Options {
     pub inputs: Vec<Input>,
     pub rates: Vec<u32>,
     pub horizon: Option<f64>,
-    pub quick: bool,
+    pub scale: Scale,
 }
 
 impl Options {
+    /// The command line's sweep at `scale`.
+    pub fn new(s: &Sweep, scale: Scale) -> Self {
+        Options {
+            scenes: s.scenes.clone(),
+            precisions: s.precision.clone(),
+            methods: s.schemes.clone(),
+            stabs: s.stabilizers.clone(),
+            inputs: s.inputs.clone(),
+            rates: s.rates.clone(),
+            horizon: s.horizon,
+            scale,
+        }
+    }
     /// The configurations: the filters applied to the scheme set (or to the full grid when any of schemes,
     /// stabilizers or inputs is given).
     fn configs(&self) -> Vec<Config> {
@@ -772,12 +772,12 @@ impl Options {
         }
     }
     fn timing(&self) -> Timing {
-        if self.quick {
-            Timing::QUICK
-        } else {
-            Timing::FULL
-        }
+        self.scale
+            .pick(Timing::QUICK, Timing::DEFAULT, Timing::FULL)
     }
+    /// The rates and the horizon of a scene's sweep: every rate the scene lists (`--quick`: its two lowest);
+    /// its horizon at `--full`, a quarter of it by default (the error curves keep their order and slope, the
+    /// timed rounds cost a quarter), an eighth with `--quick`.
     fn rates_horizon(&self, scene: &dyn Scene) -> (Vec<u32>, f64) {
         let sw = scene.sweep();
         let mut rates = if self.rates.is_empty() {
@@ -786,9 +786,15 @@ impl Options {
             self.rates.clone()
         };
         let mut horizon = self.horizon.unwrap_or(sw.horizon);
-        if self.quick {
-            rates.truncate(2);
-            horizon = horizon.min(2.37 * sw.horizon / 20.37);
+        match self.scale {
+            Scale::Quick => {
+                rates.truncate(2);
+                horizon = horizon.min(2.37 * sw.horizon / 20.37);
+            }
+            Scale::Default => {
+                horizon = self.horizon.unwrap_or(5.37 * sw.horizon / 20.37);
+            }
+            Scale::Full => {}
         }
         (rates, horizon)
     }

@@ -6,8 +6,10 @@
 use crate::dd;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, sci, Csv, Table};
-use crate::work_precision::attitude_error;
-use crate::Ctx;
+use crate::cli::{Horizon, ReportArgs};
+use crate::report::Ctx;
+use crate::scenes::attitude_error;
+use crate::study::{CsvFile, Study};
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::Hold;
 use quatprop::scheme::ExpMap;
@@ -15,8 +17,25 @@ use quatprop::stabilize::FirstOrder;
 use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
-/// The skewed axis of the constant rate (unit), |ω| = 1 rad/s before rounding to f32.
-pub const AXIS: Vec3<f64> = Vec3::new(0.36, -0.48, 0.80);
+/// The time base (sub-command `time-base`).
+pub struct TimeBaseStudy;
+
+impl Study for TimeBaseStudy {
+    type Args = Horizon;
+    const NAME: &'static str = "time-base";
+    const ABOUT: &'static str = "An f64 state fed f32 samples with dt = f32(0.001) or from FixedPeriod, against physical time";
+    const CSV: &'static [CsvFile] = &[CsvFile::table::<TimeBaseRow>()];
+    fn figures(&self) -> Vec<String> {
+        vec!["time_base".into()]
+    }
+    fn report_args(&self, report: &ReportArgs) -> Horizon {
+        report.horizon.clone()
+    }
+    fn run(&self, ctx: &mut Ctx, horizon: &Horizon) {
+        let total = horizon.steps(ctx.scale);
+        ctx.section("time base", |c| time_base(c, total));
+    }
+}
 
 /// How each step's `dt` is formed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,7 +122,7 @@ pub fn checkpoints(total: u64) -> Vec<u64> {
 
 /// Runs one time base to `total` steps; one row per checkpoint.
 pub fn run(tb: TimeBase, total: u64, tick: &mut dyn FnMut()) -> Vec<TimeBaseRow> {
-    let w32 = Vec3::<f32>::from_f64(AXIS);
+    let w32 = Vec3::<f32>::from_f64(dd::AXIS);
     let w = w32.to_f64();
     let mut p = Propagator::new(Quat::<f64>::IDENTITY, ExpMap, Hold, FirstOrder).expect("valid");
     let mut period = FixedPeriod::<f32>::new(1e-3).expect("valid period");
@@ -136,7 +155,7 @@ pub fn run(tb: TimeBase, total: u64, tick: &mut dyn FnMut()) -> Vec<TimeBaseRow>
     out
 }
 
-pub fn time_base(ctx: &mut Ctx, total: u64) -> String {
+fn time_base(ctx: &mut Ctx, total: u64) -> String {
     use rayon::prelude::*;
     let bar = ctx.progress();
     // Accuracy only (nothing timed): the three time bases in parallel.

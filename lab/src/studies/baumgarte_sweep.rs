@@ -8,12 +8,32 @@
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, Csv, Table};
 use crate::unchecked::held_step;
-use crate::Ctx;
+use crate::report::Ctx;
+use crate::study::{CsvFile, NoArgs, Study};
 use quatprop::input::Hold;
 use quatprop::scheme::{Baumgarte, Euler, Rk2, Rk3, Rk4, Rk5, RungeKutta};
 use quatprop::stabilize::Off;
 use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 use serde::{Deserialize, Serialize};
+
+/// Baumgarte's gain swept to divergence (sub-command `baumgarte-sweep`).
+pub struct BaumgarteSweep;
+
+impl Study for BaumgarteSweep {
+    type Args = NoArgs;
+    const NAME: &'static str = "baumgarte-sweep";
+    const ABOUT: &'static str = "Baumgarte's gain k swept to divergence in propagation, every Runge–Kutta scheme, against the library's refusal bound";
+    const CSV: &'static [CsvFile] = &[CsvFile::data::<CurveRow>(), CsvFile::table::<SweepRow>()];
+    fn figures(&self) -> Vec<String> {
+        vec!["baumgarte_sweep".into()]
+    }
+    fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
+        // Gains over seven decades and steps per gain: the full sizes cost seconds, so the default runs them.
+        let points = ctx.scale.pick(40, 160, 160);
+        let steps = ctx.scale.pick(2000, 20_000, 20_000);
+        ctx.section("baumgarte sweep", |c| baumgarte_sweep(c, points, steps));
+    }
+}
 
 /// |N| after the run, one scheme at one (H|ω|, k).
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
@@ -247,9 +267,7 @@ fn sweep_scheme<S: RungeKutta>(
     }
 }
 
-pub fn baumgarte_sweep(ctx: &mut Ctx, quick: bool) -> String {
-    let points = if quick { 40 } else { 160 };
-    let steps = if quick { 2000 } else { 20_000 };
+fn baumgarte_sweep(ctx: &mut Ctx, points: usize, steps: usize) -> String {
     // k from 1e-4 to 1e3 (1/s).
     let ks: Vec<f64> = (0..points)
         .map(|i| 10f64.powf(-4.0 + 7.0 * i as f64 / (points - 1) as f64))

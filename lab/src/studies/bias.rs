@@ -10,12 +10,36 @@
 
 use crate::peers::FusionOffset;
 use crate::plot::{plot, Axis, Series};
-use crate::sensor::Rng;
+use crate::rng::Rng;
 use crate::table::{self, cell, fixed, sci, Csv, Table};
-use crate::Ctx;
+use crate::report::Ctx;
+use crate::study::{CsvFile, NoArgs, Study};
 use quatprop::frontend::BiasEstimator;
 use quatprop::{GyroSample, Vec3};
 use serde::{Deserialize, Serialize};
+
+/// Bias estimation against Fusion (sub-command `bias`).
+pub struct Bias;
+
+impl Study for Bias {
+    type Args = NoArgs;
+    const NAME: &'static str = "bias";
+    const ABOUT: &'static str = "Bias estimation: quatprop's BiasEstimator against Fusion's FusionOffset (and its C code with `--features fusion-c`)";
+    const CSV: &'static [CsvFile] = &[
+        CsvFile::data::<SeriesRow>(),
+        CsvFile::table::<ConvergenceRow>(),
+        CsvFile::table::<RotationRow>(),
+        CsvFile::table::<FusionCRow>(),
+    ];
+    fn figures(&self) -> Vec<String> {
+        vec!["bias_still".into(), "bias_after_motion".into()]
+    }
+    fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
+        // Noise seeds pooled for the still-body convergence: 32 cost about a second.
+        let seeds = ctx.scale.pick(4, 32, 32);
+        ctx.section("bias estimation", |c| bias_study(c, seeds));
+    }
+}
 
 const FS: u32 = 1000;
 const SECONDS: f64 = 120.0;
@@ -470,7 +494,7 @@ fn pooled_still(seeds: u64, tick: &mut dyn FnMut()) -> Vec<ConvergenceRow> {
         .collect()
 }
 
-pub fn bias_study(ctx: &mut Ctx, quick: bool) -> String {
+fn bias_study(ctx: &mut Ctx, seeds: u64) -> String {
     let streams = streams();
     let mut series_rows = Vec::new();
     let mut conv = Vec::new();
@@ -511,7 +535,6 @@ pub fn bias_study(ctx: &mut Ctx, quick: bool) -> String {
             }
         }
     }
-    let seeds = if quick { 4 } else { 32 };
     conv.extend(pooled_still(seeds, &mut || ctx.tick()));
     let fusion_c: Vec<FusionCRow> = streams.iter().map(fusion_c_check).collect();
     ctx.rows(&series_rows);

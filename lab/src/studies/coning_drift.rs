@@ -4,13 +4,32 @@
 //! checkpoints; p from the λ dependence over λ = 0.05…0.2, c at λ = 0.05.
 
 use crate::table::{self, Csv, Table};
-use crate::Ctx;
+use crate::report::Ctx;
+use crate::study::{CsvFile, NoArgs, Study};
 use quatprop::accumulate::Kahan;
 use quatprop::input::{History, InputModel, Linear, TwiceRate};
 use quatprop::scheme::SchemeKind;
 use quatprop::stabilize::Off;
 use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 use serde::{Deserialize, Serialize};
+
+/// The coning drift coefficients (sub-command `coning-drift`).
+pub struct ConingDrift;
+
+impl Study for ConingDrift {
+    type Args = NoArgs;
+    const NAME: &'static str = "coning-drift";
+    const ABOUT: &'static str = "Coning drift coefficient of every rate scheme and input model";
+    const CSV: &'static [CsvFile] = &[CsvFile::data::<DriftRow>(), CsvFile::table::<FitRow>()];
+    fn figures(&self) -> Vec<String> {
+        Vec::new()
+    }
+    fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
+        // Cone periods between the drift's checkpoints: 20 cost a fraction of a second.
+        let periods = ctx.scale.pick(3, 20, 20);
+        ctx.section("coning drift", |c| coning_drift(c, periods));
+    }
+}
 
 /// The measured drift of one scheme × input at one λ = Ωh.
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
@@ -158,8 +177,7 @@ fn measure<I: InputModel<f64, Sample = GyroSample<f64>>>(
     (axial(p.attitude(), t) - first.0) / (t - first.1)
 }
 
-pub fn coning_drift(ctx: &mut Ctx, quick: bool) -> String {
-    let periods = if quick { 3 } else { 20 };
+fn coning_drift(ctx: &mut Ctx, periods: usize) -> String {
     let lambdas = [0.05, 0.1, 0.2];
     let mut rows = Vec::new();
     let mut fits = Vec::new();

@@ -22,7 +22,9 @@ use crate::configs::scheme_name;
 use crate::dd;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, cell, sci, Csv, Table};
-use crate::Ctx;
+use crate::cli::{Horizon, ReportArgs};
+use crate::report::Ctx;
+use crate::study::{CsvFile, Study};
 use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::coning::OnePlusPrevious;
@@ -33,7 +35,35 @@ use quatprop::{DeltaAngle, GyroSample, Propagator, Quat, Real, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-const AXIS: Vec3<f64> = crate::time_base::AXIS;
+/// The long horizon in f32 (sub-command `long-horizon`).
+pub struct LongHorizon;
+
+impl Study for LongHorizon {
+    type Args = Horizon;
+    const NAME: &'static str = "long-horizon";
+    const ABOUT: &'static str = "f32 own error and error against physical time to 1e8 steps (--full; 1e7 by default, 1e9 with --long)";
+    const CSV: &'static [CsvFile] = &[CsvFile::data::<PointRow>(), CsvFile::table::<SummaryRow>()];
+    fn figures(&self) -> Vec<String> {
+        [
+            "long_horizon_own_constant",
+            "long_horizon_own_coning",
+            "long_horizon_physical",
+            "long_horizon",
+            "long_horizon_norm",
+        ]
+        .map(String::from)
+        .to_vec()
+    }
+    fn report_args(&self, report: &ReportArgs) -> Horizon {
+        report.horizon.clone()
+    }
+    fn run(&self, ctx: &mut Ctx, horizon: &Horizon) {
+        let total = horizon.steps(ctx.scale);
+        ctx.section("long horizon", |c| long_horizon(c, total));
+    }
+}
+
+const AXIS: Vec3<f64> = dd::AXIS;
 const ALPHA: f64 = 0.3;
 
 /// The motion of a long run.
@@ -566,7 +596,7 @@ fn summary(r: &Run, pts: &[PointRow]) -> SummaryRow {
     }
 }
 
-pub fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
+fn long_horizon(ctx: &mut Ctx, total: u64) -> String {
     let runs = runs();
     let bar = ctx.progress();
     // Accuracy runs: independent, in parallel (rayon); nothing here is timed.

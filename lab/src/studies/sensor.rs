@@ -5,35 +5,35 @@
 //! times, integrated in f64 by Magnus-4 with 16 substeps per sample interval (checked against 8 in the report).
 
 use crate::configs::{Config, Input, Peer, Sample, Stab};
-use crate::scenes::{gauss_step, Scene};
+use crate::cli::Sweep;
+use crate::report::Ctx;
+use crate::rng::Rng;
+use crate::scenes::{self, attitude_error, gauss_step, Scene};
+use crate::study::{CsvFile, Study};
 use crate::table::{cell, Csv, Table};
-use crate::work_precision::attitude_error;
-use crate::Ctx;
 use quatprop::input::GaussPoints;
 use quatprop::scheme::{Magnus4, SchemeKind};
 use quatprop::stabilize::Normalize;
 use quatprop::{Propagator, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
-/// splitmix64: a small deterministic generator (the study is reproducible bit for bit).
-pub struct Rng(pub u64);
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+/// Sensor realism (sub-command `sensor`; of the sweep's parameters it takes the first scene, the first
+/// rate and the horizon).
+pub struct Sensor;
+
+impl Study for Sensor {
+    type Args = Sweep;
+    const NAME: &'static str = "sensor";
+    const ABOUT: &'static str = "Sensor realism: noise, bias, 16-bit counts, saturation, dropped samples, dt jitter";
+    const CSV: &'static [CsvFile] = &[CsvFile::table::<SensorRow>()];
+    fn figures(&self) -> Vec<String> {
+        Vec::new()
     }
-    /// Uniform in [0, 1).
-    pub fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    /// Standard normal (Box–Muller).
-    pub fn normal(&mut self) -> f64 {
-        let u1 = self.uniform().max(1e-300);
-        let u2 = self.uniform();
-        (-2.0 * u1.ln()).sqrt() * (2.0 * core::f64::consts::PI * u2).cos()
+    fn run(&self, ctx: &mut Ctx, sweep: &Sweep) {
+        // Seconds of the scene: the full 5.37 s cost a fraction of a second.
+        let horizon = sweep.horizon.unwrap_or(ctx.scale.pick(1.37, 5.37, 5.37));
+        let catalogue = scenes::catalogue(sweep.horizon.unwrap_or(0.0).max(70.0));
+        ctx.section("sensor realism", |c| sensor_study(c, &catalogue, sweep, horizon));
     }
 }
 
@@ -318,17 +318,12 @@ impl Table for SensorRow {
     }
 }
 
-pub fn sensor_study(
-    ctx: &mut Ctx,
-    scenes: &[Box<dyn Scene>],
-    opt: &crate::work_precision::Options,
-) -> String {
+fn sensor_study(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Sweep, horizon: f64) -> String {
     let key = opt.scenes.first().map_or("spin2000", String::as_str);
     let Some(scene) = scenes.iter().find(|s| s.key() == key) else {
         return format!("### Sensor realism\n\nNo scene {key}.\n");
     };
     let hz = opt.rates.first().copied().unwrap_or(1000) as f64;
-    let horizon = opt.horizon.unwrap_or(if opt.quick { 1.37 } else { 5.37 });
     let configs = configs();
     let models = models();
     let mut rows = Vec::new();

@@ -3,12 +3,36 @@
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, Csv, Table};
 use crate::unchecked::held_step;
-use crate::Ctx;
+use crate::report::Ctx;
+use crate::study::{CsvFile, NoArgs, Study};
 use quatprop::input::Hold;
 use quatprop::scheme::{Baumgarte, Rk4};
 use quatprop::stabilize::{Normalize, Off};
 use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use serde::{Deserialize, Serialize};
+
+/// The seed paper's two figures (sub-command `geiger`).
+pub struct Geiger;
+
+impl Study for Geiger {
+    type Args = NoArgs;
+    const NAME: &'static str = "geiger";
+    const ABOUT: &'static str = "The seed paper's Fig. 1 (N(t) under RK4) and Fig. 2 (N∞ against the Baumgarte gain k)";
+    const CSV: &'static [CsvFile] = &[
+        CsvFile::data::<Fig1Row>(),
+        CsvFile::data::<Fig2Row>(),
+        CsvFile::table::<GainRow>(),
+    ];
+    fn figures(&self) -> Vec<String> {
+        vec!["geiger_fig1".into(), "geiger_fig2".into()]
+    }
+    fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
+        ctx.section("geiger fig 1", figure1);
+        // Gains per step angle, log-spaced over six decades: 400 resolve the two optimal gains' dips.
+        let points = ctx.scale.pick(60, 400, 400);
+        ctx.section("geiger fig 2", |c| figure2(c, points));
+    }
+}
 
 /// Fig. 1: N after each step.
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
@@ -77,7 +101,7 @@ impl Table for GainRow {
 
 /// Fig. 1: constant rotation |ω| = 1 rad/s about z, 30 steps per period, 30 periods (the seed's setting);
 /// N(t) without stabilization, with Baumgarte k = 0.5, with normalization, and the closed form (1 − β)^j − 1.
-pub fn figure1(ctx: &mut Ctx) -> String {
+fn figure1(ctx: &mut Ctx) -> String {
     let h = 2.0 * core::f64::consts::PI / 30.0;
     let w = Vec3::new(0.0, 0.0, 1.0);
     let steps = 900;
@@ -186,8 +210,8 @@ fn n_infinity(k: f64, h: f64) -> Option<(f64, bool)> {
 }
 
 /// Fig. 2: |N∞| against k (log axes) at several step angles; the two optimal k (zeros of N∞) to 6 digits,
-/// and where the iteration diverges.
-pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
+/// and where the iteration diverges; `points` gains per step angle.
+fn figure2(ctx: &mut Ctx, points: usize) -> String {
     let mut out = String::from(
         "### The seed's Fig. 2: N∞ against the Baumgarte gain k\n\n![N∞(k)](geiger_fig2.png)\n\n\
          Permanent rotation |ω| = 1 rad/s under RK4. N∞ is the fixed point of the per-step map N → F(N) (the seed's \
@@ -197,7 +221,6 @@ pub fn figure2(ctx: &mut Ctx, quick: bool) -> String {
     let mut series = Vec::new();
     let mut rows = Vec::new();
     let mut gains = Vec::new();
-    let points = if quick { 60 } else { 400 };
     for hw in [0.1, 0.2, 0.5, 2.0 * core::f64::consts::PI / 30.0] {
         let ks: Vec<f64> = (0..points)
             .map(|i| 10f64.powf(-4.0 + 6.0 * i as f64 / (points - 1) as f64))

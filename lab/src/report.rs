@@ -1,0 +1,165 @@
+//! The report being written: [`Ctx`] (output directory, scale, progress, the sections so far, their times,
+//! failures) and [`finish`], which writes `README.md` from the sections and checks every figure it links.
+
+use crate::quiet::Quiet;
+use crate::study::Scale;
+use crate::table;
+use crate::timing::{self, StudyTimeRow};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// What the studies write through: output directory, scale, progress and failure bookkeeping.
+pub struct Ctx {
+    out: PathBuf,
+    /// How big the studies make their grids and horizons.
+    pub scale: Scale,
+    started: Instant,
+    /// A spinner on a terminal's stderr (the section and its work items); hidden when stderr is not a
+    /// terminal.
+    bar: indicatif::ProgressBar,
+    failures: Vec<String>,
+    files: Vec<String>,
+    /// The report's sections (Markdown), in order.
+    sections: Vec<String>,
+    /// Each section's wall and CPU time, in order.
+    times: Vec<StudyTimeRow>,
+    /// Whether host-time measurements ran at the core's quiet speed (the probe, watched over the process).
+    pub quiet: Quiet,
+}
+
+impl Ctx {
+    pub fn new(out: PathBuf, scale: Scale) -> Self {
+        use std::io::IsTerminal as _;
+        let bar = if std::io::stderr().is_terminal() {
+            let b = indicatif::ProgressBar::new_spinner();
+            b.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "[{elapsed:>4}] {msg:20} {pos:>7} work items",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+            );
+            b.enable_steady_tick(std::time::Duration::from_millis(250));
+            b
+        } else {
+            indicatif::ProgressBar::hidden()
+        };
+        Self {
+            out,
+            scale,
+            started: Instant::now(),
+            bar,
+            failures: Vec::new(),
+            files: Vec::new(),
+            sections: Vec::new(),
+            times: Vec::new(),
+            quiet: Quiet::new(),
+        }
+    }
+
+    /// Runs one timed part of a study (a row of the run-time table, `name`) whose Markdown `f` returns; the
+    /// Markdown becomes the report's next section.
+    pub fn section(&mut self, name: &str, f: impl FnOnce(&mut Ctx) -> String) {
+        self.bar.set_message(name.to_string());
+        let clock = timing::Clock::start();
+        let s = f(self);
+        let row = clock.row(name);
+        self.bar.suspend(|| {
+            eprintln!(
+                "{name}: done in {:.1} s (CPU {:.1} s)",
+                row.wall_s, row.cpu_s
+            )
+        });
+        self.times.push(row);
+        self.sections.push(s);
+    }
+
+    /// One unit of work done (progress on a terminal only).
+    pub fn tick(&mut self) {
+        self.bar.inc(1);
+    }
+
+    /// The progress bar, for work that runs in parallel (`inc` from any thread).
+    pub fn progress(&self) -> indicatif::ProgressBar {
+        self.bar.clone()
+    }
+
+    /// Writes a CSV file of typed rows (failures are reported at the end).
+    pub fn rows<R: table::Csv>(&mut self, rows: &[R]) {
+        match table::write(&self.out.join(R::FILE), rows) {
+            Ok(()) => self.files.push(R::FILE.to_string()),
+            Err(e) => self.failures.push(e),
+        }
+    }
+
+    /// Writes a table's CSV and returns the table as rendered from the file read back (with its markers).
+    pub fn table<R: table::Table>(&mut self, rows: &[R]) -> String {
+        self.rows(rows);
+        table::rendered::<R>(&self.out).unwrap_or_else(|e| {
+            self.failures.push(e.clone());
+            format!("(table {} missing: {e})\n", R::FILE)
+        })
+    }
+
+    /// Runs a plotting closure that writes `<name>.svg` and `<name>.png`.
+    pub fn plot(&mut self, f: impl FnOnce(&Path) -> std::io::Result<()>) {
+        if let Err(e) = f(&self.out) {
+            self.failures.push(format!("plot: {e}"));
+        }
+    }
+
+    /// Clears the progress bar (before the final messages).
+    pub fn clear_progress(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// Writes `README.md` from the sections and checks that every figure they link exists, and for a whole
+/// report (`all_studies`) the files against the registry (`outputs::check`); the failures.
+pub fn finish(ctx: &mut Ctx, command: &str, all_studies: bool) -> Vec<String> {
+    let out = ctx.out.clone();
+    let times = std::mem::take(&mut ctx.times);
+    let sections = std::mem::take(&mut ctx.sections);
+    let run_time = format!(
+        "### Run time\n\nEach study's wall time and this process's CPU time over all its threads: CPU / wall \
+         near the thread count means the sweeps ran in parallel; near 1, serially (the timing measurements \
+         always are). On a shared machine wall time also counts the other processes; CPU time does not. \
+         `RAYON_NUM_THREADS=1` runs every sweep serially, for comparison.\n\n{}",
+        ctx.table(&times)
+    );
+    let md = format!(
+        "# quatprop lab report\n\nGenerated by `cargo run --release -p quatprop-lab{} -- {command}` in {:.1} s \
+         (wall time on this machine, shared; the accuracy sweeps on {} threads, every timing measurement \
+         serial).\n\n{}\n{run_time}\n\
+         CSV data: {}.\n",
+        if cfg!(feature = "fusion-c") {
+            " --features fusion-c"
+        } else {
+            ""
+        },
+        ctx.started.elapsed().as_secs_f64(),
+        rayon::current_num_threads(),
+        sections.join("\n"),
+        ctx.files.join(", ")
+    );
+    if let Err(e) = std::fs::write(out.join("README.md"), md) {
+        ctx.failures.push(format!("README.md: {e}"));
+    }
+    // Every figure the sections link must exist.
+    for s in &sections {
+        for part in s.split("](").skip(1) {
+            let file = part.split(')').next().unwrap_or("");
+            if !out.join(file).exists() {
+                ctx.failures.push(format!("missing figure {file}"));
+            }
+            let svg = file.replace(".png", ".svg");
+            if !out.join(&svg).exists() {
+                ctx.failures.push(format!("missing figure {svg}"));
+            }
+        }
+    }
+    if all_studies {
+        let files = ctx.files.clone();
+        ctx.failures.extend(crate::outputs::check(&out, &files));
+    }
+    ctx.failures.clone()
+}
