@@ -11,6 +11,12 @@
 //! and stabilizer's code; one image with the bursts on every zero-sized combination too would not fit the
 //! boards' 4 MB flash).
 //!
+//!
+//! With the feature `nopanic-config`, the image is the run-time configuration instead: a
+//! `config::Configured` built from an opaque `Config`, every call on it with rate samples and delta angles
+//! (`push`, `start`, `push_burst`, `push_burst_timed`, `set_attitude`, `restart_input`, the getters), which
+//! reaches the loop of every scheme × input model × accumulator, and a burst through `visit_compact`.
+//!
 //! Built, not run:
 //! `cargo build --release --target <triple> --no-default-features --features panic-never --bin nopanic`.
 //! For the micro:bit's 256 KB flash, add one `nopanic-<input>` feature per image (none: every input model)
@@ -23,14 +29,15 @@
 use core::hint::black_box;
 use cortex_m_rt::entry;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
+use quatprop::config::{AccumulatorKind, Config, InputKind, Visit};
 use quatprop::frontend::{
     Alignment, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
 };
 use quatprop::input::coning::{ConingKind, TwoSample};
-use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
+use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
 use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::{Stabilizer, StabilizerKind};
-use quatprop::{Propagator, Quat, Vec3};
+use quatprop::{DeltaAngle, GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::configs::{each_scheme, Input, Label, Visitor};
 
 struct Exercise;
@@ -165,9 +172,84 @@ fn front_end() {
     }
 }
 
+/// A burst through `Configured::visit_compact` (the scheme matched per step).
+struct CompactBurst<'a> {
+    rates: &'a [GyroSample<f32>],
+    deltas: &'a [DeltaAngle<f32>],
+    period: &'a mut FixedPeriod<f32>,
+}
+
+impl Visit<f32> for CompactBurst<'_> {
+    type Output = Result<usize, quatprop::Refused>;
+    fn rates<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = GyroSample<f32>>,
+        A: Accumulator<f32>,
+    {
+        p.push_burst(self.rates, self.period)
+    }
+    fn deltas<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    where
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = DeltaAngle<f32>>,
+        A: Accumulator<f32>,
+    {
+        p.push_burst(self.deltas, self.period)
+    }
+}
+
+/// Every call on the run-time configuration, from an opaque `Config`.
+#[inline(never)]
+fn configured() {
+    let config = black_box(Config {
+        scheme: SchemeKind::Rk4,
+        baumgarte_gain: Some(0.5),
+        input: InputKind::DeltaAngles(ConingKind::ThreeSample),
+        stabilizer: StabilizerKind::Every(3),
+        accumulator: AccumulatorKind::FloatFloat,
+    });
+    let Ok(mut p) = config.build::<f32>(black_box(Quat::new(1.0, 0.0, 0.0, 0.0))) else {
+        return;
+    };
+    let w = black_box(GyroSample::new(Vec3::new(0.1_f32, -0.2, 0.3)));
+    let d = black_box(DeltaAngle::new(Vec3::new(1e-4_f32, -2e-4, 3e-4)));
+    let _ = black_box(p.start(w));
+    let _ = black_box(p.start(d));
+    let _ = black_box(p.push(w, black_box(1.0e-3)));
+    let _ = black_box(p.push(d, black_box(1.0e-3)));
+    let rates = black_box([w; 4]);
+    let deltas = black_box([d; 4]);
+    if let Ok(mut period) = FixedPeriod::new(black_box(1.0e-3)) {
+        let _ = black_box(p.push_burst(&rates, &mut period));
+        let _ = black_box(p.push_burst(&deltas, &mut period));
+        let _ = black_box(p.visit_compact(CompactBurst {
+            rates: &rates,
+            deltas: &deltas,
+            period: &mut period,
+        }));
+    }
+    if let Ok(mut clock) = TickClock::new(black_box(1.0e6), black_box(32)) {
+        let _ = black_box(p.push_burst_timed(&black_box([(w, 1_000_u32), (w, 2_000)]), &mut clock));
+        let _ = black_box(p.push_burst_timed(&black_box([(d, 3_000_u32), (d, 4_000)]), &mut clock));
+    }
+    let _ = black_box(p.set_attitude(black_box(Quat::new(0.0, 1.0, 0.0, 0.0))));
+    if black_box(true) {
+        p.restart_input();
+    }
+    black_box((p.attitude(), p.attitude_low(), p.norm_error(), p.config()));
+    black_box((p.steps(), p.corrections(), p.saturated_samples()));
+}
+
 #[entry]
 fn main() -> ! {
     front_end();
+    if cfg!(feature = "nopanic-config") {
+        configured();
+        loop {
+            cortex_m::asm::wfi();
+        }
+    }
     let v = &mut Exercise;
     if ALL || cfg!(feature = "nopanic-hold") {
         each_scheme(v, Hold);
