@@ -35,7 +35,7 @@ def main():
         "(executed instructions, not cycles) of `on_fifo` over 256 coning samples in FIFO bursts of 32, "
         "minus the same run with no burst, per sample. Flash is the whole image: the startup, the sample "
         "generator and the harness are the same C code in all three; the Rust rows call the Rust quick start "
-        "(`firmware/src/quickstart.rs`, included verbatim by `ffi/src/baseline.rs`) through the same harness.",
+        "(the crate `quatprop-quickstart`, firmware/quickstart/, called by `ffi/src/baseline.rs`) through the same harness.",
         "",
         END,
     ]

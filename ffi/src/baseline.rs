@@ -1,13 +1,10 @@
 //! The Rust quick start with its static types (feature `rust-baseline`, tests and figures only): the
-//! README's `Attitude`, verbatim from firmware/src/quickstart.rs, behind three C functions, so the C
+//! README's `Attitude` (the crate `quatprop-quickstart`, firmware/quickstart/), behind three C functions, so the C
 //! firmware harness can time the statically typed Rust code against the C API's run-time dispatch with
 //! the same compiler, startup and measurement.
 
-mod quickstart {
-    include!("../../firmware/src/quickstart.rs");
-}
 use crate::{check, quatprop_quat_t, quatprop_t};
-use quickstart::Attitude;
+use quatprop_quickstart::Attitude;
 
 const _: () = assert!(core::mem::size_of::<Attitude>() <= core::mem::size_of::<quatprop_t>());
 const _: () = assert!(core::mem::align_of::<Attitude>() <= core::mem::align_of::<quatprop_t>());
@@ -86,7 +83,7 @@ mod kinds {
     use quatprop::stabilize::StabilizerKind;
     use quatprop::{input::History, Error, GyroSample, Propagator, Quat};
 
-    /// As the quick start's (firmware/src/quickstart.rs): 8 samples kept in the struct.
+    /// As the quick start's (firmware/quickstart/src/lib.rs): 8 samples kept in the struct.
     const BATCH: usize = 8;
 
     pub struct KindAttitude {

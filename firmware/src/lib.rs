@@ -8,7 +8,8 @@
 pub mod configs;
 pub mod device_model;
 pub mod driver_demo;
-pub mod quickstart;
+/// The README's quick start (the crate `quatprop-quickstart`, firmware/quickstart/).
+pub use quatprop_quickstart as quickstart;
 pub mod scenes;
 
 #[cfg(target_os = "none")]

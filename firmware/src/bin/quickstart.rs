@@ -1,4 +1,4 @@
-//! The README's quick start on the board: `firmware/src/quickstart.rs` (the README's code, verbatim) fed the
+//! The README's quick start on the board: `firmware/quickstart/src/lib.rs` (the README's code, verbatim) fed the
 //! deterministic raw-count FIFO stream of `scenes::quickstart_fifo` (400 bursts of 25 samples at 1 kHz: 2 s
 //! still with a bias, then coning). Prints the attitude's bits and the refused count;
 //! `firmware/expected/quickstart.txt` holds what the host computes from the same code and stream.

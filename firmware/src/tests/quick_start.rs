@@ -1,12 +1,12 @@
 //! The README's quick start is the firmware's `quickstart` program, verbatim: the code between the
-//! markers of `firmware/src/quickstart.rs` must appear in the repository's README.md as one block, so what
+//! markers of `firmware/quickstart/src/lib.rs` must appear in the repository's README.md as one block, so what
 //! runs on the Cortex-M4F under QEMU (and what the snapshot test compares with the host) is what users paste.
 
 use crate::quickstart;
 
 #[test]
 fn readme_quick_start_is_the_firmware_quickstart_module() {
-    let module = include_str!("../quickstart.rs");
+    let module = include_str!("../../quickstart/src/lib.rs");
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md"))
         .expect("the repository's README.md");
     let begin = module
@@ -18,7 +18,7 @@ fn readme_quick_start_is_the_firmware_quickstart_module() {
     assert!(code.contains("Propagator::"), "markers enclose the code");
     assert!(
         readme.contains(code),
-        "README.md does not show firmware/src/quickstart.rs verbatim:\n{code}"
+        "README.md does not show firmware/quickstart/src/lib.rs verbatim:\n{code}"
     );
 }
 

@@ -1,6 +1,10 @@
-// The README's FIFO quick start, verbatim between the markers (this library's host tests,
-// src/tests/quick_start.rs, check that the README shows exactly this code). Compiled into the M4F firmware
-// (`quickstart` program) and into the host tests, so the two run the same f32 arithmetic.
+//! The README's FIFO quick start, verbatim between the markers (the firmware's host tests,
+//! firmware/src/tests/quick_start.rs, check that the README shows exactly this code): a crate of its own
+//! because three others run it, the same f32 arithmetic everywhere: the firmware (its `quickstart`
+//! program on the M4F, its host tests) and the C API's comparison harness (`ffi`, feature
+//! `rust-baseline`).
+#![no_std]
+
 // quick start: begin
 use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
 use quatprop::{Error, GyroSample, Propagator, Quat, Recommended};
