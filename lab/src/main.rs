@@ -16,6 +16,8 @@
 mod cli;
 mod configs;
 mod dd;
+#[cfg(test)]
+mod example_study;
 mod outputs;
 mod peers;
 mod plot;

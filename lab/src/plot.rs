@@ -277,10 +277,25 @@ fn xml(t: &str) -> String {
         .replace('>', "&gt;")
 }
 
+/// The system's fonts, loaded once per process (every plot's text uses them).
+fn fonts() -> std::sync::Arc<resvg::usvg::fontdb::Database> {
+    static FONTS: std::sync::OnceLock<std::sync::Arc<resvg::usvg::fontdb::Database>> =
+        std::sync::OnceLock::new();
+    FONTS
+        .get_or_init(|| {
+            let mut db = resvg::usvg::fontdb::Database::new();
+            db.load_system_fonts();
+            std::sync::Arc::new(db)
+        })
+        .clone()
+}
+
 fn png(svg: &str, path: &Path) -> std::io::Result<()> {
     use resvg::{tiny_skia, usvg};
-    let mut opt = usvg::Options::default();
-    opt.fontdb_mut().load_system_fonts();
+    let opt = usvg::Options {
+        fontdb: fonts(),
+        ..usvg::Options::default()
+    };
     let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| std::io::Error::other(e.to_string()))?;
     let size = tree.size().to_int_size();
     let mut pix = tiny_skia::Pixmap::new(size.width(), size.height())

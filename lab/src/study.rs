@@ -103,7 +103,7 @@ impl CsvFile {
 /// A study of the lab: one sub-command, one or more sections of the report.
 pub trait Study: Sync + 'static {
     /// Its sub-command's arguments (clap derive; [`NoArgs`] for none).
-    type Args: Args + FromArgMatches + Default;
+    type Args: Args + FromArgMatches;
     /// The sub-command (kebab-case).
     const NAME: &'static str;
     /// One line: the sub-command's help and the study's line in `quatprop-lab help` and lab/README.md.
@@ -112,12 +112,21 @@ pub trait Study: Sync + 'static {
     const CSV: &'static [CsvFile];
     /// The figures it writes in a report (file stems; each as `.svg` and `.png`).
     fn figures(&self) -> Vec<String>;
-    /// The arguments it runs with in `report` (default: its defaults).
+    /// The arguments it runs with in `report` (default: its sub-command's defaults, as with no argument).
     fn report_args(&self, _report: &ReportArgs) -> Self::Args {
-        Self::Args::default()
+        defaults()
     }
     /// Runs the study: its files through `ctx`, its report sections through `ctx.section`.
     fn run(&self, ctx: &mut Ctx, args: &Self::Args);
+}
+
+/// Arguments as an empty command line gives them (clap's defaults).
+pub fn defaults<A: Args + FromArgMatches>() -> A {
+    let matches = A::augment_args(clap::Command::new("defaults"))
+        .no_binary_name(true)
+        .try_get_matches_from(Vec::<String>::new())
+        .expect("a study's arguments all have defaults");
+    A::from_arg_matches(&matches).expect("a study's arguments all have defaults")
 }
 
 /// A [`Study`] behind a reference, for the registry (its arguments parsed from the command line).
@@ -161,5 +170,82 @@ impl<S: Study> AnyStudy for S {
     }
     fn figures(&self) -> Vec<String> {
         Study::figures(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::example_study::InputModels;
+
+    const README: &str = include_str!("../README.md");
+
+    /// lab/README.md's example is `example_study.rs` from its first `use` on, verbatim.
+    #[test]
+    fn readme_example_is_the_example_study() {
+        let file = include_str!("example_study.rs");
+        let code = &file[file.find("use ").unwrap()..];
+        let block = README
+            .split("```rust\n")
+            .nth(1)
+            .and_then(|b| b.split("```\n").next())
+            .expect("a rust block in lab/README.md");
+        assert_eq!(
+            block, code,
+            "lab/README.md's example against src/example_study.rs"
+        );
+    }
+
+    /// lab/README.md lists every registered study with its sub-command and one-line description.
+    #[test]
+    fn readme_lists_every_study() {
+        for s in crate::studies::ALL {
+            let line = format!("| `{}` | {} |", s.name(), s.about());
+            assert!(
+                README.contains(&line),
+                "lab/README.md lacks the line {line}"
+            );
+        }
+    }
+
+    /// The example runs as a registered study would: from its sub-command's arguments and in a report
+    /// (its defaults), writing the files it declares, which read back strictly.
+    #[test]
+    fn the_example_study_runs_like_a_registered_one() {
+        let dir = std::env::temp_dir().join(format!("quatprop-lab-example-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let study: &dyn AnyStudy = &InputModels;
+        let matches = study
+            .command()
+            .try_get_matches_from(["example-inputs", "--rate", "500"])
+            .unwrap();
+        let mut ctx = Ctx::new(dir.clone(), Scale::Quick);
+        study.run_matches(&mut ctx, &matches).unwrap();
+        let failures = crate::report::finish(&mut ctx, "example-inputs --quick", false);
+        assert!(failures.is_empty(), "{failures:?}");
+        let md = std::fs::read_to_string(dir.join("README.md")).unwrap();
+        assert!(md.contains("500 Hz, 1.37 s."), "{md}");
+        for c in study.csv() {
+            assert_eq!(c.read_strict(&dir), Ok(4), "{}", c.file);
+            assert!(md.contains(&c.render(&dir).unwrap().unwrap()));
+        }
+        let mut ctx = Ctx::new(dir.clone(), Scale::Quick);
+        study.run_in_report(&mut ctx, &ReportArgs::default());
+        crate::report::finish(&mut ctx, "report --quick", false);
+        let md = std::fs::read_to_string(dir.join("README.md")).unwrap();
+        assert!(
+            md.contains("1000 Hz, 1.37 s."),
+            "the sub-command's default rate: {md}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn scale_picks_its_value() {
+        assert_eq!(Scale::Quick.pick(1, 2, 3), 1);
+        assert_eq!(Scale::Default.pick(1, 2, 3), 2);
+        assert_eq!(Scale::Full.pick(1, 2, 3), 3);
+        assert_eq!(Scale::default(), Scale::Default);
     }
 }

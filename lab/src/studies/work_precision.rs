@@ -118,12 +118,13 @@ impl Timing {
         calibration: Duration::ZERO,
         cap: Duration::ZERO,
     };
-    /// The default scale: 3 quiet runs each, over at least 1 s, the probe watched for 10 s, at most 4 s per
-    /// sweep (a slow spell of the shared core, up to ~40 s, ends a sweep's timing at the cap).
+    /// The default scale: 3 quiet runs each, over at least 1 s, no calibration wait, at most 4 s per sweep
+    /// (the report's 21 sweeps in well under a minute; a slow spell of the shared core, up to ~40 s, ends a
+    /// sweep's timing at the cap, and the text lists its points).
     pub const DEFAULT: Timing = Timing {
         runs: 3,
         window: Duration::from_secs(1),
-        calibration: Duration::from_secs(10),
+        calibration: Duration::ZERO,
         cap: Duration::from_secs(4),
     };
     /// `--full`: 15 quiet runs each, over at least 10 s, the probe watched for 60 s, at most 180 s per sweep.
@@ -260,28 +261,52 @@ pub fn timing_note(points: &[Point], timing: Timing) -> String {
         .filter(|p| p.quiet_runs < timing.runs)
         .map(|p| format!("{} at {} Hz ({})", p.config.label(), p.hz, p.quiet_runs))
         .collect();
+    let until = if timing.calibration.is_zero() {
+        format!(
+            "{} quiet runs and at least {} s had passed, for at most {} s per sweep (the default scale: no wait \
+             for the probe's calibration, so a sweep that ran entirely in a slow spell reads slow; `--full` \
+             watches the probe for {} s first and wants {} quiet runs)",
+            timing.runs,
+            timing.window.as_secs(),
+            timing.cap.as_secs(),
+            Timing::FULL.calibration.as_secs(),
+            Timing::FULL.runs,
+        )
+    } else {
+        format!(
+            "{} quiet runs, at least {} s had passed and the probe had been watched for {} s in this process",
+            timing.runs,
+            timing.window.as_secs(),
+            timing.calibration.as_secs(),
+        )
+    };
     let rule = format!(
         "Host time: each configuration's least run among its runs at the core's quiet speed; the runs are \
          interleaved over every configuration and rate, a fixed probe workload is timed between them, and a run \
          counts as quiet when the probes on both sides are within {:.0} % of the probe's least time in this \
          process (this machine is a shared VM on which the same code alternates between two speeds; see \
-         `lab/src/quiet.rs`). Rounds continued until every configuration had {} quiet runs, at least {} s had \
-         passed and the probe had been watched for {} s in this process.",
+         `lab/src/quiet.rs`). Rounds continued until every configuration had {until}.",
         100.0 * crate::quiet::Quiet::TOLERANCE,
-        timing.runs,
-        timing.window.as_secs(),
-        timing.calibration.as_secs(),
     );
     if timing.cap.is_zero() {
         "Host time: one timed run after a warm-up (`--quick`: not a measurement of record)."
             .to_string()
     } else if short.is_empty() {
         rule
-    } else {
+    } else if short.len() <= 12 {
         format!(
             "{rule} **Fewer quiet runs** (after {} s; the cost is then the least of all runs): {}.",
             timing.cap.as_secs(),
             short.join(", ")
+        )
+    } else {
+        format!(
+            "{rule} **Fewer quiet runs** (after {} s; the cost is then the least of all runs): {} of the {} \
+             points, among them {}.",
+            timing.cap.as_secs(),
+            short.len(),
+            points.len(),
+            short[..3].join(", ")
         )
     }
 }
