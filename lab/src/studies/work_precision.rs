@@ -1169,3 +1169,28 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
         timing_note(&points, opt.timing()).trim_end_matches('.')
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `--full` times as the report of record did: its rule is, word for word, the one in docs/report; the
+    /// default scale says that it does not wait for the calibration, and `--quick` that it is no
+    /// measurement of record.
+    #[test]
+    fn timing_notes_per_scale() {
+        let docs = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/report/README.md"),
+        )
+        .unwrap();
+        let full = timing_note(&[], Timing::FULL);
+        assert!(docs.contains(&full), "{full}");
+        let default = timing_note(&[], Timing::DEFAULT);
+        assert!(default.contains("3 quiet runs and at least 1 s had passed, for at most 4 s per sweep"));
+        assert!(default.contains("no wait for the probe's calibration"));
+        assert!(timing_note(&[], Timing::QUICK).contains("not a measurement of record"));
+        for t in [Timing::DEFAULT, Timing::FULL] {
+            assert!(t.cap >= t.window && t.runs >= 1, "{t:?}");
+        }
+    }
+}
