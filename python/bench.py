@@ -8,7 +8,7 @@ array). The two alternate (which goes first alternates too), several rounds; the
 disturbed by other processes), and the results must be bit for bit equal.
 
     python bench.py                 # 10^7 samples, 5 rounds, f32 and f64; writes docs/python.md
-    python bench.py --quick         # 10^6 samples, 2 rounds, f32; CI: fails above --limit
+    python bench.py --quick         # 10^6 samples, 2 rounds, f32 (CI: prints the ratio, checks the bits)
 """
 
 from __future__ import annotations
@@ -109,7 +109,6 @@ def main() -> int:
     ap.add_argument("--quick", action="store_true", help="10^6 samples, 2 rounds, f32; no docs written")
     ap.add_argument("--n", type=int, default=None, help="samples (default 10^7, 10^6 with --quick)")
     ap.add_argument("--rounds", type=int, default=None, help="alternating rounds (default 5, 2 with --quick)")
-    ap.add_argument("--limit", type=float, default=None, help="fail if the fastest-round ratio exceeds this")
     ap.add_argument("--docs", type=Path, default=Path(__file__).resolve().parent.parent / "docs" / "python.md")
     args = ap.parse_args()
     n = args.n or (10**6 if args.quick else 10**7)
@@ -130,9 +129,6 @@ def main() -> int:
             raise SystemExit(f"{args.docs}: markers not found")
         args.docs.write_text(pattern.sub(lambda _: block, text))
         print(f"wrote {args.docs}")
-    if args.limit is not None and any(r["ratio_min"] > args.limit for r in results):
-        print(f"ratio above {args.limit}", file=sys.stderr)
-        return 1
     return 0
 
 
