@@ -294,6 +294,11 @@ pub struct Configured<T> {
 /// A loop of a binding's own over the static propagator a [`Configured`] stands for
 /// ([`Configured::visit`]): `rates` is called for the rate input models, `deltas` for [`DeltaAngles`].
 /// The stabilizer is the run-time [`StabilizerKind`]; scheme, input model and accumulator are the types.
+///
+/// Run a loop on a copy of the propagator and write it back after (`let mut local = *p; … *p = local;`),
+/// as [`Propagator::push_burst`] does: the method receives the propagator by reference, and a loop
+/// behind a reference takes the state through memory at every step (on an x86-64 host the Python
+/// binding's loop ran 1.5x as long per sample).
 pub trait Visit<T: Real> {
     /// What the loop returns.
     type Output;
@@ -597,40 +602,43 @@ impl<T: Real> Configured<T> {
     #[inline(always)]
     fn with_scheme<S: Scheme<T>, V: Visit<T>>(&mut self, s: S, v: V) -> V::Output {
         match self.input {
-            InputState::Hold(i) => self.with_input::<S, _, Rates, V>(s, i, v, InputState::Hold),
-            InputState::Linear(i) => self.with_input::<S, _, Rates, V>(s, i, v, InputState::Linear),
+            InputState::Hold(i) => self.with_input::<S, _, Rates, V, _>(s, i, v, InputState::Hold),
+            InputState::Linear(i) => {
+                self.with_input::<S, _, Rates, V, _>(s, i, v, InputState::Linear)
+            }
             InputState::History(i) => {
-                self.with_input::<S, _, Rates, V>(s, i, v, InputState::History)
+                self.with_input::<S, _, Rates, V, _>(s, i, v, InputState::History)
             }
             InputState::TwiceRate(i) => {
-                self.with_input::<S, _, Rates, V>(s, i, v, InputState::TwiceRate)
+                self.with_input::<S, _, Rates, V, _>(s, i, v, InputState::TwiceRate)
             }
             InputState::GaussPoints(i) => {
-                self.with_input::<S, _, Rates, V>(s, i, v, InputState::GaussPoints)
+                self.with_input::<S, _, Rates, V, _>(s, i, v, InputState::GaussPoints)
             }
             InputState::DeltaAngles(i) => {
-                self.with_input::<S, _, Deltas, V>(s, i, v, InputState::DeltaAngles)
+                self.with_input::<S, _, Deltas, V, _>(s, i, v, InputState::DeltaAngles)
             }
         }
     }
 
     #[inline(always)]
-    fn with_input<S, I, R, V>(&mut self, s: S, i: I, v: V, put: fn(I) -> InputState<T>) -> V::Output
+    fn with_input<S, I, R, V, P>(&mut self, s: S, i: I, v: V, put: P) -> V::Output
     where
         S: Scheme<T>,
         I: InputModel<T>,
         R: Route<T, I>,
         V: Visit<T>,
+        P: FnOnce(I) -> InputState<T>,
     {
         match self.accumulator {
             AccumulatorState::Plain(a) => {
-                self.run::<S, I, _, R, V>(s, i, a, v, put, AccumulatorState::Plain)
+                self.run::<S, I, _, R, V, _, _>(s, i, a, v, put, AccumulatorState::Plain)
             }
             AccumulatorState::Kahan(a) => {
-                self.run::<S, I, _, R, V>(s, i, a, v, put, AccumulatorState::Kahan)
+                self.run::<S, I, _, R, V, _, _>(s, i, a, v, put, AccumulatorState::Kahan)
             }
             AccumulatorState::FloatFloat(a) => {
-                self.run::<S, I, _, R, V>(s, i, a, v, put, AccumulatorState::FloatFloat)
+                self.run::<S, I, _, R, V, _, _>(s, i, a, v, put, AccumulatorState::FloatFloat)
             }
         }
     }
@@ -639,14 +647,14 @@ impl<T: Real> Configured<T> {
     /// function per configuration and visitor, which the `match` above calls.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    fn run<S, I, A, R, V>(
+    fn run<S, I, A, R, V, PI, PA>(
         &mut self,
         s: S,
         i: I,
         a: A,
         v: V,
-        put_input: fn(I) -> InputState<T>,
-        put_accumulator: fn(A) -> AccumulatorState<T>,
+        put_input: PI,
+        put_accumulator: PA,
     ) -> V::Output
     where
         S: Scheme<T>,
@@ -654,6 +662,8 @@ impl<T: Real> Configured<T> {
         A: Accumulator<T>,
         R: Route<T, I>,
         V: Visit<T>,
+        PI: FnOnce(I) -> InputState<T>,
+        PA: FnOnce(A) -> AccumulatorState<T>,
     {
         let mut p = Propagator::from_parts(self.q, s, i, self.stabilizer, a, self.counters);
         let out = R::call(v, &mut p);

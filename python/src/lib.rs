@@ -164,9 +164,35 @@ impl<T: Real> TimeBase<T> for Seconds {
 
 /// The loop: every sample into the propagator, its attitude after every sample into `out`. A refused
 /// sample either stops the loop (`mask` is `None`) or is flagged and skipped, the state as after the last
-/// accepted sample and its interval carried into the next one.
+/// accepted sample and its interval carried into the next one. It runs on a copy of the propagator in
+/// this frame, written back at the end, as the core's bursts do: behind the `&mut` the state would go
+/// through memory at every step.
 #[inline(always)]
 fn run<T, S, I, Z, A, B>(
+    p: &mut Propagator<T, S, I, Z, A>,
+    time: B,
+    rows: &[[T; 3]],
+    stamps: impl Iterator<Item = B::Stamp>,
+    out: &mut [[T; 4]],
+    mask: Option<&mut [bool]>,
+) -> Result<(), Refused>
+where
+    T: Real,
+    S: Scheme<T>,
+    I: InputModel<T>,
+    I::Sample: FromRow<T>,
+    Z: Stabilizer,
+    A: Accumulator<T>,
+    B: TimeBase<T>,
+{
+    let mut local = *p;
+    let result = run_local(&mut local, time, rows, stamps, out, mask);
+    *p = local;
+    result
+}
+
+#[inline(always)]
+fn run_local<T, S, I, Z, A, B>(
     p: &mut Propagator<T, S, I, Z, A>,
     mut time: B,
     rows: &[[T; 3]],
