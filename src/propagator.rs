@@ -222,10 +222,12 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     ///
     /// In every case the propagator, its input model included, is unchanged.
     ///
-    /// Always inlined: a loop that calls it can keep the state in registers, whichever other call sites
-    /// the program has (the Python binding's loop, with three, got a call and ran 1.3x to 1.6x as long on
-    /// an x86-64 host). The cost is flash: each call site holds one copy of the step.
-    #[inline(always)]
+    /// A loop runs fastest with one call site of `push` per propagator type: the compiler then inlines
+    /// it and can keep the state in registers (the Python binding's loop, with three, got a call and ran
+    /// 1.3x to 1.6x as long on an x86-64 host). It is not forced inline: a firmware that pushes from
+    /// many places would hold a copy of the step at each (the firmware's `stack` program then overflows
+    /// the M4F's flash).
+    #[inline]
     pub fn push(&mut self, sample: I::Sample, dt: T) -> Result<(), Error> {
         // One compare pair for the common case; the cold path tells the errors apart.
         if !(dt > T::ZERO && dt <= T::MAX) {
