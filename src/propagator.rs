@@ -322,16 +322,14 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         samples: &[I::Sample],
         period: &mut FixedPeriod<T>,
     ) -> Result<usize, Refused> {
-        self.on_local(|p| {
-            for (index, sample) in samples.iter().enumerate() {
-                let dt = period.next_dt();
-                if let Err(error) = p.push(*sample, dt) {
-                    period.carry_over(dt);
-                    return Err(Refused { index, error });
-                }
+        for (index, sample) in samples.iter().enumerate() {
+            let dt = period.next_dt();
+            if let Err(error) = self.push(*sample, dt) {
+                period.carry_over(dt);
+                return Err(Refused { index, error });
             }
-            Ok(samples.len())
-        })
+        }
+        Ok(samples.len())
     }
 
     /// Pushes a FIFO burst of samples with the sensor's own timestamps (ticks of `clock`, see
@@ -364,30 +362,16 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         samples: &[(I::Sample, u32)],
         clock: &mut TickClock<T>,
     ) -> Result<usize, Refused> {
-        self.on_local(|p| {
-            for (index, (sample, timestamp)) in samples.iter().enumerate() {
-                let refused = |error| Refused { index, error };
-                let (next, dt) = clock.advance(*timestamp).map_err(refused)?;
-                match dt {
-                    Some(dt) => p.push(*sample, dt).map_err(refused)?,
-                    None => p.start(*sample).map_err(refused)?,
-                }
-                *clock = next;
+        for (index, (sample, timestamp)) in samples.iter().enumerate() {
+            let refused = |error| Refused { index, error };
+            let (next, dt) = clock.advance(*timestamp).map_err(refused)?;
+            match dt {
+                Some(dt) => self.push(*sample, dt).map_err(refused)?,
+                None => self.start(*sample).map_err(refused)?,
             }
-            Ok(samples.len())
-        })
-    }
-
-    /// Runs a loop on a copy of the propagator in the caller's frame and writes it back once. Behind
-    /// `&mut self` the state goes through memory at every step; a local copy can stay in registers (on
-    /// an x86-64 host the Python binding's per-sample loop ran 1.5x as long without it; a burst of 32
-    /// of the lab's `config-cost` stream took the same time either way).
-    #[inline(always)]
-    fn on_local<R>(&mut self, f: impl FnOnce(&mut Self) -> R) -> R {
-        let mut local = *self;
-        let r = f(&mut local);
-        *self = local;
-        r
+            *clock = next;
+        }
+        Ok(samples.len())
     }
 
     /// Counts an accepted sample if it is saturated (a branch, not an add: most samples are not).

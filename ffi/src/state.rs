@@ -314,16 +314,12 @@ pub struct RateLoop<'a> {
 impl Visit<f32> for RateLoop<'_> {
     type Output = Result<usize, Refusal>;
     #[inline(always)]
-    fn rates<S, I, A>(mut self, prop: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    fn rates<S, I, A>(mut self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
     where
         S: Scheme<f32>,
         I: InputModel<f32, Sample = GyroSample<f32>>,
         A: Accumulator<f32>,
     {
-        // On a copy in this frame, written back after the loop: behind the `&mut` the state would go
-        // through memory at every step.
-        let mut local = *prop;
-        let p = &mut local;
         let n = self.rates.len();
         let mut result = Ok(n);
         for i in 0..n {
@@ -337,7 +333,6 @@ impl Visit<f32> for RateLoop<'_> {
             }
             self.front.bias = bias;
         }
-        *prop = local;
         self.time.restore(self.front);
         result
     }
@@ -379,15 +374,12 @@ impl Visit<f32> for DeltaLoop<'_> {
         Err((0, Fail::WrongInputKind))
     }
     #[inline(always)]
-    fn deltas<S, I, A>(mut self, prop: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
+    fn deltas<S, I, A>(mut self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
     where
         S: Scheme<f32>,
         I: InputModel<f32, Sample = DeltaAngle<f32>>,
         A: Accumulator<f32>,
     {
-        // On a copy, as the rate loop.
-        let mut local = *prop;
-        let p = &mut local;
         let n = match self.deltas {
             Deltas::One(_) => 1,
             Deltas::Samples(s) => s.len(),
@@ -407,7 +399,6 @@ impl Visit<f32> for DeltaLoop<'_> {
                 break;
             }
         }
-        *prop = local;
         self.time.restore(self.front);
         result
     }

@@ -107,6 +107,11 @@ impl Ctx {
         }
     }
 
+    /// Records a failure of a study's own check (reported at the end; the run exits non-zero).
+    pub fn fail(&mut self, what: String) {
+        self.failures.push(what);
+    }
+
     /// Clears the progress bar (before the final messages).
     pub fn clear_progress(&self) {
         self.bar.finish_and_clear();

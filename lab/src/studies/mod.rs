@@ -22,6 +22,7 @@ registry! {
     baumgarte_sweep::BaumgarteSweep,
     atlas::Atlas,
     work_precision::WorkPrecision,
+    config_cost::ConfigCost,
     scene_table::Scenes,
     sensor::Sensor,
     coning_drift::ConingDrift,
