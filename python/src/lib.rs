@@ -45,11 +45,9 @@ impl<T: Real> FromRow<T> for DeltaAngle<T> {
     }
 }
 
-/// Where each sample's `dt` comes from. One value per call, matched per sample, so that each
-/// propagator type has one call site of `push` and the compiler inlines it into the loop (with one
-/// loop per time base it did not, and `integrate` took 1.3x to 1.6x the same Rust loop).
+/// The time base's state between calls: where each sample's `dt` comes from.
 #[derive(Clone, Copy)]
-enum Time<'a, T> {
+enum Clock<T> {
     /// A fixed period: the core's [`FixedPeriod`], exactly as [`Propagator::push_burst`] uses it.
     Fixed(FixedPeriod<T>),
     /// Timestamps in seconds (f64). The first accepted sample starts the stream (`Propagator::start`);
@@ -58,40 +56,29 @@ enum Time<'a, T> {
     /// left out. So the `dt`s sum to `t_last − t_first` within half an ulp of one `dt` (in f64 the carry
     /// stays zero and `dt = t_k − t_last` as computed in f64, exact by Sterbenz whenever
     /// `t_last ≥ t_k / 2`).
-    Seconds {
-        stamps: &'a [f64],
-        last: Option<f64>,
-        carry: f64,
-    },
+    Seconds { last: Option<f64>, carry: f64 },
     /// Integer timestamps: the core's [`TickClock`], exactly as [`Propagator::push_burst_timed`] uses it.
-    Ticks {
-        stamps: &'a [u32],
-        clock: TickClock<T>,
-    },
+    Ticks(TickClock<T>),
+}
+
+/// A [`Clock`] with one call's timestamps. One value per call, matched per sample, so that each
+/// propagator type has one call site of `push` and the compiler inlines it into the loop (with one loop
+/// per time base it did not, and `integrate` took 1.3x to 1.6x the same Rust loop).
+struct Time<'a, T> {
+    clock: Clock<T>,
+    seconds: &'a [f64],
+    ticks: &'a [u32],
 }
 
 impl<T: Real> Time<'_, T> {
-    /// How many samples it has times for (`None`: any number).
-    fn len(&self) -> Option<usize> {
-        match self {
-            Time::Fixed(_) => None,
-            Time::Seconds { stamps, .. } => Some(stamps.len()),
-            Time::Ticks { stamps, .. } => Some(stamps.len()),
-        }
-    }
-
-    /// Sample `i`'s interval, the time base advanced past it: `Some(dt)`, or `None` for the first
-    /// timestamp of a stream (its sample starts the stream). On error nothing changed.
+    /// Sample `i`'s interval, the clock advanced past it: `Some(dt)`, or `None` for the first timestamp
+    /// of a stream (its sample starts the stream). On error nothing changed.
     #[inline(always)]
     fn advance(&mut self, i: usize) -> Result<Option<T>, Error> {
-        match self {
-            Time::Fixed(period) => Ok(Some(period.next_dt())),
-            Time::Seconds {
-                stamps,
-                last,
-                carry,
-            } => {
-                let t = stamps.get(i).copied().unwrap_or(f64::NAN);
+        match &mut self.clock {
+            Clock::Fixed(period) => Ok(Some(period.next_dt())),
+            Clock::Seconds { last, carry } => {
+                let t = self.seconds.get(i).copied().unwrap_or(f64::NAN);
                 if !t.is_finite() {
                     return Err(Error::NonFiniteStep);
                 }
@@ -112,8 +99,8 @@ impl<T: Real> Time<'_, T> {
                     }
                 }
             }
-            Time::Ticks { stamps, clock } => {
-                let tick = stamps.get(i).copied().unwrap_or(0);
+            Clock::Ticks(clock) => {
+                let tick = self.ticks.get(i).copied().unwrap_or(0);
                 let (next, dt) = clock.advance(tick)?;
                 *clock = next;
                 Ok(dt)
@@ -121,18 +108,18 @@ impl<T: Real> Time<'_, T> {
         }
     }
 
-    /// After a refused sample (`before`: the time base before it): the next interval covers the refused
+    /// After a refused sample (`before`: the clock before it): the next interval covers the refused
     /// one. A period gives the interval back ([`FixedPeriod::carry_over`]); timestamps count from the
     /// last accepted one.
     #[inline(always)]
-    fn refused(&mut self, dt: Option<T>, before: Self) {
-        match self {
-            Time::Fixed(period) => {
+    fn refused(&mut self, dt: Option<T>, before: Clock<T>) {
+        match &mut self.clock {
+            Clock::Fixed(period) => {
                 if let Some(dt) = dt {
                     period.carry_over(dt);
                 }
             }
-            _ => *self = before,
+            _ => self.clock = before,
         }
     }
 }
@@ -140,12 +127,12 @@ impl<T: Real> Time<'_, T> {
 /// The loop: every sample into the propagator, its attitude after every sample into `out`. A refused
 /// sample either stops the loop (`mask` is `None`) or is flagged and skipped, the state as after the last
 /// accepted sample and its interval carried into the next one. It runs on a copy of the propagator in
-/// this frame, written back at the end, as the core's bursts do: behind the `&mut` the state would go
-/// through memory at every step.
+/// this frame, written back at the end: behind the `&mut` the state would go through memory at every
+/// step (see [`Visit`]).
 #[inline(always)]
 fn run<T, S, I, Z, A>(
     prop: &mut Propagator<T, S, I, Z, A>,
-    mut time: Time<'_, T>,
+    time: &mut Time<'_, T>,
     rows: &[[T; 3]],
     out: &mut [[T; 4]],
     mut mask: Option<&mut [bool]>,
@@ -160,10 +147,9 @@ where
 {
     let mut local = *prop;
     let p = &mut local;
-    let n = time.len().map_or(rows.len(), |n| n.min(rows.len()));
     let mut result = Ok(());
-    for (index, (row, o)) in rows[..n].iter().zip(out.iter_mut()).enumerate() {
-        let before = time;
+    for (index, (row, o)) in rows.iter().zip(out.iter_mut()).enumerate() {
+        let before = time.clock;
         let sample = I::Sample::from_row(*row);
         let pushed = time.advance(index).and_then(|dt| {
             match dt {
@@ -190,14 +176,14 @@ where
 
 /// [`run`] as a [`Visit`] of the configured propagator: compiled for each scheme × input model ×
 /// accumulator and precision.
-struct Run<'a, T> {
-    time: Time<'a, T>,
+struct Run<'a, 'b, T> {
+    time: &'a mut Time<'b, T>,
     rows: &'a [[T; 3]],
     out: &'a mut [[T; 4]],
     mask: Option<&'a mut [bool]>,
 }
 
-impl<T: Real> Visit<T> for Run<'_, T> {
+impl<T: Real> Visit<T> for Run<'_, '_, T> {
     type Output = Result<(), Refused>;
     fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
     where
@@ -217,117 +203,414 @@ impl<T: Real> Visit<T> for Run<'_, T> {
     }
 }
 
+/// Everything a stream keeps between calls: the configured propagator, its clock, the front end
+/// (alignment to body axes, then a fixed bias or the bias estimator) and the count of refused samples.
+/// `integrate` is one call on a new one; `Stream` keeps one, so any chunking of a stream gives the same
+/// bits as one call over the whole of it.
 #[derive(Clone, Copy)]
-enum TimeSel<'a> {
-    Fixed(f64),
-    Seconds(&'a [f64]),
-    Ticks(&'a [u32], f64, u32),
+struct Session<T: Real> {
+    p: Configured<T>,
+    clock: Clock<T>,
+    alignment: Option<Alignment<T>>,
+    fixed: Option<FixedBias<T>>,
+    estimator: Option<BiasEstimator<T>>,
+    refused: u64,
 }
 
+impl<T: Real> Session<T> {
+    fn new(args: &StreamArgs) -> PyResult<Self> {
+        let config = Config {
+            scheme: parse_scheme(&args.scheme)?,
+            baumgarte_gain: None,
+            input: parse_input(&args.input, &args.coning)?,
+            stabilizer: parse_stabilizer(&args.stabilizer, args.every)?,
+            accumulator: if args.kahan {
+                AccumulatorKind::Kahan
+            } else {
+                AccumulatorKind::Plain
+            },
+        };
+        let q0 = Quat::new(
+            T::from_f64(args.q0[0]),
+            T::from_f64(args.q0[1]),
+            T::from_f64(args.q0[2]),
+            T::from_f64(args.q0[3]),
+        );
+        let clock = match (args.period, args.timestamps, args.tick_hz) {
+            (Some(p), false, None) => Clock::Fixed(FixedPeriod::new(p).map_err(config_error)?),
+            (None, true, None) => Clock::Seconds {
+                last: None,
+                carry: 0.0,
+            },
+            (None, false, Some(hz)) => {
+                Clock::Ticks(TickClock::new(hz, args.tick_bits).map_err(config_error)?)
+            }
+            _ => {
+                return Err(PyValueError::new_err(
+                    "give exactly one time base: a period, timestamps (s) or a tick frequency",
+                ))
+            }
+        };
+        let alignment = match (&args.remap, args.matrix) {
+            (Some(r), None) => Some(Alignment::from(axis_remap(r)?)),
+            (None, Some(m)) => Some(
+                Alignment::from_matrix(m.map(|row| row.map(T::from_f64))).map_err(config_error)?,
+            ),
+            (None, None) => None,
+            _ => {
+                return Err(PyValueError::new_err(
+                    "give alignment as a remap name or a matrix, not both",
+                ))
+            }
+        };
+        let (fixed, estimator) = match (args.bias, args.estimator) {
+            (None, None) => (None, None),
+            (Some(b), None) => (Some(FixedBias::new(vec3(b)).map_err(config_error)?), None),
+            (None, Some((window, gate, memory, initial))) => {
+                let e = BiasEstimator::from_samples(window, T::from_f64(gate), memory)
+                    .map_err(config_error)?;
+                let e = match initial {
+                    Some(b) => e.with_initial(vec3(b)).map_err(config_error)?,
+                    None => e,
+                };
+                (None, Some(e))
+            }
+            _ => {
+                return Err(PyValueError::new_err(
+                    "give a fixed bias or an estimator, not both",
+                ))
+            }
+        };
+        Ok(Self {
+            p: config.build(q0).map_err(config_error)?,
+            clock,
+            alignment,
+            fixed,
+            estimator,
+            refused: 0,
+        })
+    }
+
+    /// Whether samples pass a front end (else they go to the propagator as they are).
+    fn has_front_end(&self) -> bool {
+        self.alignment.is_some() || self.fixed.is_some() || self.estimator.is_some()
+    }
+
+    /// The front end over `rows`: alignment (sensor to body axes), then the bias (body axes), exactly as
+    /// the README's quick start composes them per sample. A sample the bias estimator refuses (NaN) is
+    /// passed on unchanged, so the propagator refuses it too.
+    fn front_end(&mut self, rows: &[[T; 3]]) -> Vec<[T; 3]> {
+        rows.iter()
+            .map(|r| {
+                let mut s = GyroSample::<T>::from_row(*r);
+                if let Some(a) = &self.alignment {
+                    s = a.apply(s);
+                }
+                if let Some(b) = &self.fixed {
+                    s = b.apply(s);
+                }
+                if let Some(e) = self.estimator.as_mut() {
+                    s = e.update(s).unwrap_or(s);
+                }
+                [s.rate.x, s.rate.y, s.rate.z]
+            })
+            .collect()
+    }
+
+    /// The rows (and their timestamps, for a timed clock: as many as rows) through the front end and the
+    /// propagator, the attitude after each row into `out`. With `mask` a refused sample is flagged and
+    /// skipped; without, the first one stops the call with the propagator and clock as after the last
+    /// accepted sample and the front end as after the refused one (it sees every sample given), so the
+    /// rows after it can be given next.
+    fn update(
+        &mut self,
+        rows: &[[T; 3]],
+        seconds: &[f64],
+        ticks: &[u32],
+        out: &mut [[T; 4]],
+        mut mask: Option<&mut [bool]>,
+    ) -> Result<(), Refused> {
+        let estimator = self.estimator;
+        let processed;
+        let input = if self.has_front_end() {
+            processed = self.front_end(rows);
+            &processed[..]
+        } else {
+            rows
+        };
+        let mut time = Time {
+            clock: self.clock,
+            seconds,
+            ticks,
+        };
+        let result = self.p.visit(Run {
+            time: &mut time,
+            rows: input,
+            out,
+            mask: mask.as_deref_mut(),
+        });
+        self.clock = time.clock;
+        match &result {
+            Ok(()) => {
+                let flagged = mask.map_or(0, |m| m.iter().filter(|&&f| f).count());
+                self.refused += flagged as u64;
+            }
+            Err(r) => {
+                self.refused += 1;
+                // The estimator has seen the whole call: back to where the refused sample left it.
+                if estimator.is_some() {
+                    self.estimator = estimator;
+                    self.front_end(&rows[..=r.index]);
+                }
+            }
+        }
+        result
+    }
+}
+
+/// The arguments of a stream as the Python layer passes them (validated there; checked again here).
+struct StreamArgs {
+    period: Option<f64>,
+    timestamps: bool,
+    tick_hz: Option<f64>,
+    tick_bits: u32,
+    scheme: String,
+    stabilizer: String,
+    every: u32,
+    input: String,
+    coning: String,
+    kahan: bool,
+    q0: [f64; 4],
+    remap: Option<String>,
+    matrix: Option<[[f64; 3]; 3]>,
+    bias: Option<[f64; 3]>,
+    estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
+}
+
+/// A session in the precision the stream was made with.
+// One per Python object, on the heap: the f32 variant's unused bytes cost nothing worth a box.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy)]
-enum BiasSel<T> {
-    None,
-    Fixed(Vec3<T>),
-    Estimator {
-        window: u32,
-        gate: T,
-        memory: u32,
-        initial: Option<Vec3<T>>,
-    },
+enum Sessions {
+    F32(Session<f32>),
+    F64(Session<f64>),
 }
 
-/// One call of `integrate`: the propagator's configuration and what the binding adds around it.
-struct Job<'a, T> {
-    config: Config,
-    q0: Quat<T>,
-    time: TimeSel<'a>,
-    alignment: Option<Alignment<T>>,
-    bias: BiasSel<T>,
+/// The state behind `quatprop.Stream`: the session now and as it was made (for `reset`).
+#[pyclass(module = "quatprop._native")]
+struct NativeStream {
+    now: Sessions,
+    made: Sessions,
+    mask: bool,
 }
 
-/// What went wrong before the loop (a bad configuration) or in it (a refused sample).
-enum Failure {
-    Config(Error),
-    Refused(Refused),
+/// The refused sample, if any: `(index, kind, reason)`.
+type RefusedInfo = Option<(usize, String, String)>;
+
+/// One call's result: the attitudes, the refused flags (with `mask`), the refused sample (without).
+type Updated<'py, T> = (
+    Bound<'py, PyArray2<T>>,
+    Option<Bound<'py, PyArray1<bool>>>,
+    RefusedInfo,
+);
+
+fn update<'py, T: Real + numpy::Element>(
+    py: Python<'py>,
+    session: &mut Session<T>,
+    mask: bool,
+    gyr: PyReadonlyArray2<'py, T>,
+    t: Option<PyReadonlyArray1<'py, f64>>,
+    ticks: Option<PyReadonlyArray1<'py, u32>>,
+) -> PyResult<Updated<'py, T>> {
+    let (rows, rest) = gyr.as_slice()?.as_chunks::<3>();
+    if !rest.is_empty() {
+        return Err(PyValueError::new_err("gyr must have shape (N, 3)"));
+    }
+    let n = rows.len();
+    let seconds = match &t {
+        Some(a) => a.as_slice()?,
+        None => &[],
+    };
+    let tick_slice = match &ticks {
+        Some(a) => a.as_slice()?,
+        None => &[],
+    };
+    let given = match session.clock {
+        Clock::Fixed(_) => t.is_none() && ticks.is_none(),
+        Clock::Seconds { .. } => seconds.len() == n && ticks.is_none(),
+        Clock::Ticks(_) => tick_slice.len() == n && t.is_none(),
+    };
+    if !given {
+        return Err(PyValueError::new_err(
+            "the timestamps do not match the stream's time base (none for a period, t[N] for seconds, ticks[N] for a tick clock)",
+        ));
+    }
+    let (out, flags, result) = py.detach(|| {
+        let mut out = vec![[T::ZERO; 4]; n];
+        let mut flags = if mask { vec![false; n] } else { Vec::new() };
+        let m = if mask { Some(&mut flags[..]) } else { None };
+        let result = session.update(rows, seconds, tick_slice, &mut out, m);
+        (out, flags, result)
+    });
+    let refused = result
+        .err()
+        .map(|r| (r.index, error_kind(&r.error), r.error.to_string()));
+    let q = out.into_flattened().into_pyarray(py).reshape([n, 4])?;
+    let flags = if mask {
+        Some(flags.into_pyarray(py))
+    } else {
+        None
+    };
+    Ok((q, flags, refused))
 }
 
-/// The front end, applied to every sample before the loop: alignment (sensor to body axes), then the
-/// bias (in body axes), exactly as the README's quick start composes them per sample. A sample the bias
-/// estimator refuses (NaN) is passed on unchanged, so the propagator refuses it too.
-fn front_end<T: Real>(
-    rows: &[[T; 3]],
-    alignment: Option<Alignment<T>>,
-    bias: BiasSel<T>,
-) -> Result<Vec<[T; 3]>, Error> {
-    let mut fixed = None;
-    let mut estimator = None;
-    match bias {
-        BiasSel::None => {}
-        BiasSel::Fixed(b) => fixed = Some(FixedBias::new(b)?),
-        BiasSel::Estimator {
-            window,
-            gate,
-            memory,
-            initial,
-        } => {
-            let e = BiasEstimator::from_samples(window, gate, memory)?;
-            estimator = Some(match initial {
-                Some(b) => e.with_initial(b)?,
-                None => e,
-            });
+fn quat4<T: Real>(q: Quat<T>) -> [f64; 4] {
+    [q.w.to_f64(), q.x.to_f64(), q.y.to_f64(), q.z.to_f64()]
+}
+
+#[pymethods]
+impl NativeStream {
+    /// See `quatprop.Stream`; arguments already validated by the Python layer.
+    #[new]
+    #[pyo3(signature = (precision, period, timestamps, tick_hz, tick_bits, scheme, stabilizer, every, input,
+        coning, kahan, q0, mask, remap, matrix, bias, estimator))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        precision: &str,
+        period: Option<f64>,
+        timestamps: bool,
+        tick_hz: Option<f64>,
+        tick_bits: u32,
+        scheme: String,
+        stabilizer: String,
+        every: u32,
+        input: String,
+        coning: String,
+        kahan: bool,
+        q0: [f64; 4],
+        mask: bool,
+        remap: Option<String>,
+        matrix: Option<[[f64; 3]; 3]>,
+        bias: Option<[f64; 3]>,
+        estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
+    ) -> PyResult<Self> {
+        let args = StreamArgs {
+            period,
+            timestamps,
+            tick_hz,
+            tick_bits,
+            scheme,
+            stabilizer,
+            every,
+            input,
+            coning,
+            kahan,
+            q0,
+            remap,
+            matrix,
+            bias,
+            estimator,
+        };
+        let made = match precision {
+            "f32" => Sessions::F32(Session::new(&args)?),
+            "f64" => Sessions::F64(Session::new(&args)?),
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown precision {precision:?}"
+                )))
+            }
+        };
+        Ok(Self {
+            now: made,
+            made,
+            mask,
+        })
+    }
+
+    /// Rows of f32 samples into an f32 stream.
+    #[pyo3(signature = (gyr, t=None, ticks=None))]
+    fn update_f32<'py>(
+        &mut self,
+        py: Python<'py>,
+        gyr: PyReadonlyArray2<'py, f32>,
+        t: Option<PyReadonlyArray1<'py, f64>>,
+        ticks: Option<PyReadonlyArray1<'py, u32>>,
+    ) -> PyResult<Updated<'py, f32>> {
+        match &mut self.now {
+            Sessions::F32(s) => update(py, s, self.mask, gyr, t, ticks),
+            Sessions::F64(_) => Err(PyValueError::new_err("an f64 stream takes f64 samples")),
         }
     }
-    Ok(rows
-        .iter()
-        .map(|r| {
-            let mut s = GyroSample::<T>::from_row(*r);
-            if let Some(a) = &alignment {
-                s = a.apply(s);
-            }
-            if let Some(b) = &fixed {
-                s = b.apply(s);
-            }
-            if let Some(e) = estimator.as_mut() {
-                s = e.update(s).unwrap_or(s);
-            }
-            [s.rate.x, s.rate.y, s.rate.z]
-        })
-        .collect())
-}
 
-fn integrate_impl<T: Real>(
-    cfg: &Job<'_, T>,
-    rows: &[[T; 3]],
-    out: &mut [[T; 4]],
-    mask: Option<&mut [bool]>,
-) -> Result<(), Failure> {
-    let processed;
-    let rows = if cfg.alignment.is_some() || !matches!(cfg.bias, BiasSel::None) {
-        processed = front_end(rows, cfg.alignment, cfg.bias).map_err(Failure::Config)?;
-        &processed[..]
-    } else {
-        rows
-    };
-    let mut p: Configured<T> = cfg.config.build(cfg.q0).map_err(Failure::Config)?;
-    let time = match cfg.time {
-        TimeSel::Fixed(period) => Time::Fixed(FixedPeriod::new(period).map_err(Failure::Config)?),
-        TimeSel::Seconds(stamps) => Time::Seconds {
-            stamps,
-            last: None,
-            carry: 0.0,
-        },
-        TimeSel::Ticks(stamps, frequency, bits) => Time::Ticks {
-            stamps,
-            clock: TickClock::new(frequency, bits).map_err(Failure::Config)?,
-        },
-    };
-    p.visit(Run {
-        time,
-        rows,
-        out,
-        mask,
-    })
-    .map_err(Failure::Refused)
+    /// Rows of f64 samples into an f64 stream.
+    #[pyo3(signature = (gyr, t=None, ticks=None))]
+    fn update_f64<'py>(
+        &mut self,
+        py: Python<'py>,
+        gyr: PyReadonlyArray2<'py, f64>,
+        t: Option<PyReadonlyArray1<'py, f64>>,
+        ticks: Option<PyReadonlyArray1<'py, u32>>,
+    ) -> PyResult<Updated<'py, f64>> {
+        match &mut self.now {
+            Sessions::F64(s) => update(py, s, self.mask, gyr, t, ticks),
+            Sessions::F32(_) => Err(PyValueError::new_err("an f32 stream takes f32 samples")),
+        }
+    }
+
+    /// The attitude `[w, x, y, z]` after the last accepted sample.
+    fn attitude(&self) -> [f64; 4] {
+        match &self.now {
+            Sessions::F32(s) => quat4(s.p.attitude()),
+            Sessions::F64(s) => quat4(s.p.attitude()),
+        }
+    }
+
+    /// The bias subtracted now (rad/s, body axes): the estimator's estimate or the fixed bias.
+    fn bias(&self) -> Option<[f64; 3]> {
+        fn of<T: Real>(s: &Session<T>) -> Option<[f64; 3]> {
+            let b = match (s.estimator, s.fixed) {
+                (Some(e), _) => e.bias(),
+                (None, Some(f)) => f.bias(),
+                (None, None) => return None,
+            };
+            Some([b.x.to_f64(), b.y.to_f64(), b.z.to_f64()])
+        }
+        match &self.now {
+            Sessions::F32(s) => of(s),
+            Sessions::F64(s) => of(s),
+        }
+    }
+
+    /// Steps taken, samples refused (skipped or raised), saturated samples counted.
+    fn counts(&self) -> (u64, u64, u64) {
+        match &self.now {
+            Sessions::F32(s) => (s.p.steps(), s.refused, s.p.saturated_samples()),
+            Sessions::F64(s) => (s.p.steps(), s.refused, s.p.saturated_samples()),
+        }
+    }
+
+    /// Replaces the attitude (normalized); the counters, the input model's samples and the clock stay.
+    fn set_attitude(&mut self, q: [f64; 4]) -> PyResult<()> {
+        fn set<T: Real>(s: &mut Session<T>, q: [f64; 4]) -> Result<(), Error> {
+            let q = Quat::new(
+                T::from_f64(q[0]),
+                T::from_f64(q[1]),
+                T::from_f64(q[2]),
+                T::from_f64(q[3]),
+            );
+            s.p.set_attitude(q)
+        }
+        match &mut self.now {
+            Sessions::F32(s) => set(s, q),
+            Sessions::F64(s) => set(s, q),
+        }
+        .map_err(config_error)
+    }
+
+    /// Back to the state it was made with.
+    fn reset(&mut self) {
+        self.now = self.made;
+    }
 }
 
 fn error_kind(e: &Error) -> String {
@@ -415,116 +698,6 @@ fn config_error(e: Error) -> PyErr {
 fn vec3<T: Real>(v: [f64; 3]) -> Vec3<T> {
     Vec3::new(T::from_f64(v[0]), T::from_f64(v[1]), T::from_f64(v[2]))
 }
-
-/// The refused sample, if any: `(index, kind, reason)`.
-type RefusedInfo = Option<(usize, String, String)>;
-
-macro_rules! integrate_fn {
-    ($name:ident, $t:ty) => {
-        /// See `quatprop.integrate`; arguments already validated by the Python layer.
-        #[pyfunction]
-        #[pyo3(signature = (gyr, period, t, ticks, tick_hz, tick_bits, scheme, stabilizer, every, input, coning,
-            kahan, q0, mask, remap, matrix, bias, estimator))]
-        #[allow(clippy::too_many_arguments)]
-        fn $name<'py>(
-            py: Python<'py>,
-            gyr: PyReadonlyArray2<'py, $t>,
-            period: Option<f64>,
-            t: Option<PyReadonlyArray1<'py, f64>>,
-            ticks: Option<PyReadonlyArray1<'py, u32>>,
-            tick_hz: f64,
-            tick_bits: u32,
-            scheme: &str,
-            stabilizer: &str,
-            every: u32,
-            input: &str,
-            coning: &str,
-            kahan: bool,
-            q0: [f64; 4],
-            mask: bool,
-            remap: Option<&str>,
-            matrix: Option<[[f64; 3]; 3]>,
-            bias: Option<[f64; 3]>,
-            estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
-        ) -> PyResult<(Bound<'py, PyArray2<$t>>, Option<Bound<'py, PyArray1<bool>>>, RefusedInfo)> {
-            let flat = gyr.as_slice()?;
-            let (rows, rest) = flat.as_chunks::<3>();
-            if !rest.is_empty() {
-                return Err(PyValueError::new_err("gyr must have shape (N, 3)"));
-            }
-            let n = rows.len();
-            let t_slice = match &t {
-                Some(a) => Some(a.as_slice()?),
-                None => None,
-            };
-            let tick_slice = match &ticks {
-                Some(a) => Some(a.as_slice()?),
-                None => None,
-            };
-            let time = match (period, t_slice, tick_slice) {
-                (Some(p), None, None) => TimeSel::Fixed(p),
-                (None, Some(ts), None) if ts.len() == n => TimeSel::Seconds(ts),
-                (None, None, Some(ts)) if ts.len() == n => TimeSel::Ticks(ts, tick_hz, tick_bits),
-                _ => return Err(PyValueError::new_err("give exactly one of dt, t[N], ticks[N]")),
-            };
-            let alignment = match (remap, matrix) {
-                (Some(r), None) => Some(Alignment::from(axis_remap(r)?)),
-                (None, Some(m)) => Some(
-                    Alignment::from_matrix(m.map(|row| row.map(<$t>::from_f64))).map_err(config_error)?,
-                ),
-                (None, None) => None,
-                _ => return Err(PyValueError::new_err("give alignment as a remap name or a matrix, not both")),
-            };
-            let bias = match (bias, estimator) {
-                (None, None) => BiasSel::None,
-                (Some(b), None) => BiasSel::Fixed(vec3(b)),
-                (None, Some((window, gate, memory, initial))) => BiasSel::Estimator {
-                    window,
-                    gate: <$t>::from_f64(gate),
-                    memory,
-                    initial: initial.map(vec3),
-                },
-                _ => return Err(PyValueError::new_err("give a fixed bias or an estimator, not both")),
-            };
-            let cfg = Job {
-                config: Config {
-                    scheme: parse_scheme(scheme)?,
-                    baumgarte_gain: None,
-                    input: parse_input(input, coning)?,
-                    stabilizer: parse_stabilizer(stabilizer, every)?,
-                    accumulator: if kahan { AccumulatorKind::Kahan } else { AccumulatorKind::Plain },
-                },
-                q0: Quat::new(
-                    <$t>::from_f64(q0[0]),
-                    <$t>::from_f64(q0[1]),
-                    <$t>::from_f64(q0[2]),
-                    <$t>::from_f64(q0[3]),
-                ),
-                time,
-                alignment,
-                bias,
-            };
-            let (out, flags, result) = py.detach(|| {
-                let mut out = vec![[0.0 as $t; 4]; n];
-                let mut flags = if mask { vec![false; n] } else { Vec::new() };
-                let m = if mask { Some(&mut flags[..]) } else { None };
-                let result = integrate_impl(&cfg, rows, &mut out, m);
-                (out, flags, result)
-            });
-            let refused = match result {
-                Ok(()) => None,
-                Err(Failure::Config(e)) => return Err(config_error(e)),
-                Err(Failure::Refused(r)) => Some((r.index, error_kind(&r.error), r.error.to_string())),
-            };
-            let q = out.into_flattened().into_pyarray(py).reshape([n, 4])?;
-            let flags = if mask { Some(flags.into_pyarray(py)) } else { None };
-            Ok((q, flags, refused))
-        }
-    };
-}
-
-integrate_fn!(integrate_f32, f32);
-integrate_fn!(integrate_f64, f64);
 
 macro_rules! euler_fns {
     ($to_zyx:ident, $from_zyx:ident, $to_zxz:ident, $from_zxz:ident, $t:ty) => {
@@ -650,8 +823,7 @@ rust_loop_fn!(rust_loop_f64, f64);
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(integrate_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(integrate_f64, m)?)?;
+    m.add_class::<NativeStream>()?;
     m.add_function(wrap_pyfunction!(to_euler_zyx_f32, m)?)?;
     m.add_function(wrap_pyfunction!(from_euler_zyx_f32, m)?)?;
     m.add_function(wrap_pyfunction!(to_euler_zxz_f32, m)?)?;

@@ -40,6 +40,11 @@ impl<T: Real> FixedBias<T> {
             saturated: s.saturated,
         }
     }
+    /// The offset (rad/s).
+    #[must_use]
+    pub fn bias(&self) -> Vec3<T> {
+        self.bias
+    }
 }
 
 /// Learns the gyro bias while the body is still, and subtracts it.

@@ -28,6 +28,7 @@ from . import _native
 
 __all__ = [
     "integrate",
+    "Stream",
     "RefusedSample",
     "BiasEstimator",
     "to_euler_zyx",
@@ -133,6 +134,244 @@ def _choice(name: str, value: str, choices: Sequence[str]) -> str:
     return value
 
 
+_OPTIONS_DOC = """
+        scheme: one of :data:`SCHEMES`.
+        stabilizer: ``"off"``, ``"normalize"``, ``"first_order"`` or ``"every:N"``.
+        input: one of :data:`INPUTS`. ``history`` (cubic through the last four samples, fourth order, no
+            latency) is the recommended model for a rate gyro.
+        coning: the coning correction of ``input="delta_angles"``, one of :data:`CONINGS`.
+        accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
+        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result.
+        q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
+        alignment: sensor → body axes, applied to each sample first: an axis remap name (one of
+            :data:`AXIS_REMAPS`) or a 3×3 rotation matrix ``R`` with ``ω_body = R ω_sensor``; a matrix
+            that is not a rotation (within 1e-4) raises ``ValueError``.
+        bias: subtracted after the alignment (body axes): a fixed ``[bx, by, bz]`` (rad/s) or a
+            :class:`BiasEstimator`. Not with ``delta_angles``.
+        on_refused: ``"raise"``: a refused sample raises :class:`RefusedSample` (its index, kind and
+            reason). ``"mask"``: a refused sample is skipped — the state stays as after the last
+            accepted sample and its interval carries into the next sample, as the Rust docs prescribe —
+            and ``(q, refused)`` is returned, ``refused`` a boolean (N,) array.
+"""
+
+
+class Stream:
+    """A stream of gyro samples integrated call by call, for data that arrives in pieces.
+
+    Everything is kept between calls — the attitude, the input model's last samples, the clock (the
+    period's exact time, the last timestamp), the bias estimator, the counters — so any chunking of a
+    stream gives the same bits as one :func:`integrate` call over the whole of it (``integrate`` is one
+    :meth:`update` of a new ``Stream``).
+
+    Give exactly one time base: ``dt`` (a fixed period, s), ``timestamps=True`` (each :meth:`update`
+    takes ``t``, float64 seconds) or ``tick_hz`` (each :meth:`update` takes ``ticks``, a counter of
+    ``tick_bits`` bits that wraps). The timing rules are :func:`integrate`'s.
+
+    Args (besides the time base):{options}
+    A refused sample with ``on_refused="raise"`` raises :class:`RefusedSample` with its index in that
+    call's ``gyr``; the stream is then as after the last accepted sample (its interval carried into the
+    next one) and its front end (alignment, bias estimator) as after the refused sample, so the rows after
+    it can be given next.
+
+    Example::
+
+        s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=1000, gate=0.02))
+        for chunk in fifo_reads:            # (n, 3) rad/s each
+            q = s.update(chunk)             # (n, 4): the attitude after each sample
+        s.attitude, s.bias, s.steps, s.refused
+    """
+
+    def __init__(
+        self,
+        dt: Optional[float] = None,
+        *,
+        timestamps: bool = False,
+        tick_hz: Optional[float] = None,
+        tick_bits: int = 32,
+        scheme: str = "expmap",
+        stabilizer: str = "first_order",
+        input: str = "history",
+        coning: str = "two_sample",
+        accumulator: str = "plain",
+        precision: str = "f32",
+        q0=None,
+        alignment=None,
+        bias=None,
+        on_refused: str = "raise",
+    ) -> None:
+        self._precision = _choice("precision", precision, tuple(_DTYPES))
+        self._dtype = _DTYPES[self._precision]
+        scheme = _choice("scheme", scheme, SCHEMES)
+        stab, every = _stabilizer(stabilizer)
+        input = _choice("input", input, INPUTS)
+        coning = _choice("coning", coning, CONINGS)
+        accumulator = _choice("accumulator", accumulator, ("plain", "kahan"))
+        self._mask = _choice("on_refused", on_refused, ("raise", "mask")) == "mask"
+
+        if not isinstance(timestamps, (bool, np.bool_)):
+            raise TypeError(f"timestamps must be True or False, got {type(timestamps).__name__}")
+        given = [n for n, v in (("dt", dt is not None), ("timestamps", bool(timestamps)), ("tick_hz", tick_hz is not None)) if v]
+        if len(given) != 1:
+            raise ValueError(f"give exactly one time base: dt, timestamps=True or tick_hz (got {given or 'none'})")
+        period = None
+        if dt is not None:
+            if isinstance(dt, (bool, np.bool_)) or not isinstance(dt, (int, float, np.integer, np.floating)):
+                raise TypeError(f"dt must be a number (s), got {type(dt).__name__}; per-sample times go in t")
+            period = float(dt)
+        self._time = "dt" if dt is not None else ("t" if timestamps else "ticks")
+        if isinstance(tick_bits, bool) or not isinstance(tick_bits, (int, np.integer)) or not 0 <= tick_bits < 2**32:
+            raise ValueError(f"tick_bits must be the counter width in bits (1 to 32), got {tick_bits!r}")
+
+        if q0 is None:
+            q0v = [1.0, 0.0, 0.0, 0.0]
+        else:
+            q0a = np.asarray(q0, dtype=np.float64)
+            if q0a.shape != (4,):
+                raise ValueError(f"q0 must be [w, x, y, z], got shape {q0a.shape}")
+            q0v = [float(c) for c in q0a]
+
+        remap = None
+        matrix = None
+        if alignment is not None:
+            if isinstance(alignment, str):
+                if alignment not in AXIS_REMAPS:
+                    raise ValueError(f"unknown axis remap {alignment!r}; e.g. 'PyNxPz' (see AXIS_REMAPS)")
+                remap = alignment
+            else:
+                m = np.asarray(alignment, dtype=np.float64)
+                if m.shape != (3, 3):
+                    raise ValueError(f"alignment matrix must be 3x3, got shape {m.shape}")
+                matrix = [[float(e) for e in row] for row in m]
+
+        fixed_bias = None
+        estimator = None
+        if bias is not None:
+            if input == "delta_angles":
+                raise ValueError("bias (rad/s) does not apply to delta angles")
+            if isinstance(bias, BiasEstimator):
+                initial = None
+                if bias.initial is not None:
+                    ia = np.asarray(bias.initial, dtype=np.float64)
+                    if ia.shape != (3,):
+                        raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
+                    initial = [float(c) for c in ia]
+                for name, v in (("window", bias.window), ("memory", bias.memory)):
+                    if not isinstance(v, (int, np.integer)) or not 1 <= v <= 2**32 - 1:
+                        raise ValueError(f"BiasEstimator.{name} must be an integer >= 1, got {v!r}")
+                estimator = (int(bias.window), float(bias.gate), int(bias.memory), initial)
+            else:
+                ba = np.asarray(bias, dtype=np.float64)
+                if ba.shape != (3,):
+                    raise ValueError(f"bias must be [bx, by, bz] (rad/s) or a BiasEstimator, got shape {ba.shape}")
+                fixed_bias = [float(c) for c in ba]
+
+        self._native = _native.NativeStream(
+            self._precision,
+            period,
+            bool(timestamps),
+            float(tick_hz) if tick_hz is not None else None,
+            int(tick_bits),
+            scheme,
+            stab,
+            every,
+            input,
+            coning,
+            accumulator == "kahan",
+            q0v,
+            self._mask,
+            remap,
+            matrix,
+            fixed_bias,
+            estimator,
+        )
+
+    def update(self, gyr, t=None, *, ticks=None):
+        """Integrates the next samples; row ``k`` of the result is the attitude after sample ``k``.
+
+        Args:
+            gyr: (N, 3) body rates ω (rad/s), or angle increments Δθ (rad) for ``input="delta_angles"``;
+                rounded once to the stream's precision.
+            t: (N,) timestamps (s, float64) for a stream made with ``timestamps=True``.
+            ticks: (N,) counter values for a stream made with ``tick_hz``.
+
+        Returns:
+            q: (N, 4) attitudes ``[w, x, y, z]``; or ``(q, refused)`` with ``on_refused="mask"``.
+
+        Raises:
+            RefusedSample: a sample was refused (``on_refused="raise"``); its index is in this call's
+                ``gyr``.
+            ValueError: a bad shape, or timestamps that do not match the stream's time base.
+        """
+        gyr = _array("gyr", gyr, self._dtype, 2, 3)
+        n = gyr.shape[0]
+        t_arr = None
+        tick_arr = None
+        if (t is not None) != (self._time == "t") or (ticks is not None) != (self._time == "ticks"):
+            want = {"dt": "no timestamps (the stream has a period)", "t": "t (the stream was made with timestamps=True)",
+                    "ticks": "ticks (the stream was made with tick_hz)"}[self._time]
+            raise ValueError(f"this stream takes {want}")
+        if t is not None:
+            t_arr = _array("t", t, np.float64, 1)
+            if t_arr.shape[0] != n:
+                raise ValueError(f"t has {t_arr.shape[0]} timestamps for {n} samples")
+        if ticks is not None:
+            a = np.asarray(ticks)
+            if a.dtype.kind not in "iu":
+                raise TypeError(f"ticks must be an integer array, got dtype {a.dtype}")
+            if a.ndim != 1 or a.shape[0] != n:
+                raise ValueError(f"ticks must have shape ({n},), got {a.shape}")
+            if a.size and (a.min() < 0 or a.max() > 2**32 - 1):
+                raise ValueError("ticks must be in 0 .. 2**32-1 (counter values)")
+            tick_arr = np.ascontiguousarray(a, dtype=np.uint32)
+        native = self._native.update_f32 if self._precision == "f32" else self._native.update_f64
+        q, mask, refused = native(gyr, t_arr, tick_arr)
+        if refused is not None:
+            raise RefusedSample(*refused)
+        if self._mask:
+            return q, mask
+        return q
+
+    @property
+    def attitude(self) -> np.ndarray:
+        """The attitude ``[w, x, y, z]`` after the last accepted sample (float64 copy of the state)."""
+        return np.array(self._native.attitude())
+
+    @property
+    def bias(self) -> Optional[np.ndarray]:
+        """The bias subtracted now (rad/s, body axes): the estimator's estimate, the fixed bias, or None."""
+        b = self._native.bias()
+        return None if b is None else np.array(b)
+
+    @property
+    def steps(self) -> int:
+        """Integration steps taken (an input model that starts on its first sample takes one fewer)."""
+        return self._native.counts()[0]
+
+    @property
+    def refused(self) -> int:
+        """Samples refused so far (skipped with ``on_refused="mask"``, or raised)."""
+        return self._native.counts()[1]
+
+    @property
+    def saturated(self) -> int:
+        """Accepted samples flagged as saturated."""
+        return self._native.counts()[2]
+
+    def set_attitude(self, q) -> None:
+        """Replaces the attitude (normalized); the input model's samples, the clock and the counters stay."""
+        qa = np.asarray(q, dtype=np.float64)
+        if qa.shape != (4,):
+            raise ValueError(f"q must be [w, x, y, z], got shape {qa.shape}")
+        self._native.set_attitude([float(c) for c in qa])
+
+    def reset(self) -> None:
+        """Back to the state the stream was made with."""
+        self._native.reset()
+
+
+Stream.__doc__ = Stream.__doc__.format(options=_OPTIONS_DOC)
+
+
 def integrate(
     gyr,
     dt: Optional[float] = None,
@@ -201,116 +440,30 @@ def integrate(
         ValueError: a bad shape, option or parameter (e.g. ``every:0``, a zero ``q0``, ``dt <= 0``).
         TypeError: an argument of the wrong type.
     """
-    precision = _choice("precision", precision, tuple(_DTYPES))
-    dtype = _DTYPES[precision]
-    gyr = _array("gyr", gyr, dtype, 2, 3)
-    n = gyr.shape[0]
-    scheme = _choice("scheme", scheme, SCHEMES)
-    stab, every = _stabilizer(stabilizer)
-    input = _choice("input", input, INPUTS)
-    coning = _choice("coning", coning, CONINGS)
-    accumulator = _choice("accumulator", accumulator, ("plain", "kahan"))
-    on_refused = _choice("on_refused", on_refused, ("raise", "mask"))
-
     given = [name for name, v in (("dt", dt), ("t", t), ("ticks", ticks)) if v is not None]
     if len(given) != 1:
         raise ValueError(f"give exactly one of dt, t, ticks (got {given or 'none'})")
-    period = None
-    t_arr = None
-    tick_arr = None
-    if dt is not None:
-        if isinstance(dt, (bool, np.bool_)) or not isinstance(dt, (int, float, np.integer, np.floating)):
-            raise TypeError(f"dt must be a number (s), got {type(dt).__name__}; per-sample times go in t")
-        period = float(dt)
-    elif t is not None:
-        t_arr = _array("t", t, np.float64, 1)
-        if t_arr.shape[0] != n:
-            raise ValueError(f"t has {t_arr.shape[0]} timestamps for {n} samples")
-    else:
-        a = np.asarray(ticks)
-        if a.dtype.kind not in "iu":
-            raise TypeError(f"ticks must be an integer array, got dtype {a.dtype}")
-        if a.ndim != 1 or a.shape[0] != n:
-            raise ValueError(f"ticks must have shape ({n},), got {a.shape}")
-        if a.size and (a.min() < 0 or a.max() > 2**32 - 1):
-            raise ValueError("ticks must be in 0 .. 2**32-1 (counter values)")
-        tick_arr = np.ascontiguousarray(a, dtype=np.uint32)
-        if tick_hz is None:
-            raise ValueError("ticks need tick_hz (ticks per second)")
+    if ticks is not None and tick_hz is None:
+        raise ValueError("ticks need tick_hz (ticks per second)")
     if tick_hz is not None and ticks is None:
         raise ValueError("tick_hz goes with ticks")
-    if isinstance(tick_bits, bool) or not isinstance(tick_bits, (int, np.integer)) or not 0 <= tick_bits < 2**32:
-        raise ValueError(f"tick_bits must be the counter width in bits (1 to 32), got {tick_bits!r}")
-
-    if q0 is None:
-        q0v = [1.0, 0.0, 0.0, 0.0]
-    else:
-        q0a = np.asarray(q0, dtype=np.float64)
-        if q0a.shape != (4,):
-            raise ValueError(f"q0 must be [w, x, y, z], got shape {q0a.shape}")
-        q0v = [float(c) for c in q0a]
-
-    remap = None
-    matrix = None
-    if alignment is not None:
-        if isinstance(alignment, str):
-            if alignment not in AXIS_REMAPS:
-                raise ValueError(f"unknown axis remap {alignment!r}; e.g. 'PyNxPz' (see AXIS_REMAPS)")
-            remap = alignment
-        else:
-            m = np.asarray(alignment, dtype=np.float64)
-            if m.shape != (3, 3):
-                raise ValueError(f"alignment matrix must be 3x3, got shape {m.shape}")
-            matrix = [[float(e) for e in row] for row in m]
-
-    fixed_bias = None
-    estimator = None
-    if bias is not None:
-        if input == "delta_angles":
-            raise ValueError("bias (rad/s) does not apply to delta angles")
-        if isinstance(bias, BiasEstimator):
-            initial = None
-            if bias.initial is not None:
-                ia = np.asarray(bias.initial, dtype=np.float64)
-                if ia.shape != (3,):
-                    raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
-                initial = [float(c) for c in ia]
-            for name, v in (("window", bias.window), ("memory", bias.memory)):
-                if not isinstance(v, (int, np.integer)) or not 1 <= v <= 2**32 - 1:
-                    raise ValueError(f"BiasEstimator.{name} must be an integer >= 1, got {v!r}")
-            estimator = (int(bias.window), float(bias.gate), int(bias.memory), initial)
-        else:
-            ba = np.asarray(bias, dtype=np.float64)
-            if ba.shape != (3,):
-                raise ValueError(f"bias must be [bx, by, bz] (rad/s) or a BiasEstimator, got shape {ba.shape}")
-            fixed_bias = [float(c) for c in ba]
-
-    native = _native.integrate_f32 if precision == "f32" else _native.integrate_f64
-    q, mask, refused = native(
-        gyr,
-        period,
-        t_arr,
-        tick_arr,
-        float(tick_hz) if tick_hz is not None else 0.0,
-        int(tick_bits),
-        scheme,
-        stab,
-        every,
-        input,
-        coning,
-        accumulator == "kahan",
-        q0v,
-        on_refused == "mask",
-        remap,
-        matrix,
-        fixed_bias,
-        estimator,
+    stream = Stream(
+        dt,
+        timestamps=t is not None,
+        tick_hz=tick_hz,
+        tick_bits=tick_bits,
+        scheme=scheme,
+        stabilizer=stabilizer,
+        input=input,
+        coning=coning,
+        accumulator=accumulator,
+        precision=precision,
+        q0=q0,
+        alignment=alignment,
+        bias=bias,
+        on_refused=on_refused,
     )
-    if refused is not None:
-        raise RefusedSample(*refused)
-    if on_refused == "mask":
-        return q, mask
-    return q
+    return stream.update(gyr, t, ticks=ticks)
 
 
 def _rows(name: str, a, width: int) -> Tuple[np.ndarray, tuple]:

@@ -44,6 +44,45 @@ class BiasEstimator:
         self, window: int, gate: float, memory: int = 64, initial: Optional[Sequence[float]] = None
     ) -> None: ...
 
+class Stream:
+    """Samples integrated call by call, all state kept between calls: any chunking gives the bits of one
+    `integrate` call over the whole stream. Exactly one time base: dt (s), timestamps=True (update takes t)
+    or tick_hz (update takes ticks)."""
+    def __init__(
+        self,
+        dt: Optional[float] = None,
+        *,
+        timestamps: bool = False,
+        tick_hz: Optional[float] = None,
+        tick_bits: int = 32,
+        scheme: Scheme = "expmap",
+        stabilizer: Stabilizer = "first_order",
+        input: Input = "history",
+        coning: Coning = "two_sample",
+        accumulator: Accumulator = "plain",
+        precision: Precision = "f32",
+        q0: Optional[npt.ArrayLike] = None,
+        alignment: Union[str, npt.ArrayLike, None] = None,
+        bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
+        on_refused: Literal["raise", "mask"] = "raise",
+    ) -> None: ...
+    def update(
+        self, gyr: npt.ArrayLike, t: Optional[npt.ArrayLike] = None, *, ticks: Optional[npt.ArrayLike] = None
+    ) -> Union[FloatArray, Tuple[FloatArray, npt.NDArray[np.bool_]]]:
+        """(N, 3) samples → (N, 4) attitudes after each; (q, refused) when made with on_refused="mask"."""
+    @property
+    def attitude(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def bias(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def refused(self) -> int: ...
+    @property
+    def saturated(self) -> int: ...
+    def set_attitude(self, q: npt.ArrayLike) -> None: ...
+    def reset(self) -> None: ...
+
 @overload
 def integrate(
     gyr: npt.ArrayLike,

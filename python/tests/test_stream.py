@@ -1,0 +1,122 @@
+"""`quatprop.Stream`: any chunking of a stream gives the bits of one `integrate` call over the whole of it."""
+
+import numpy as np
+import pytest
+
+import quatprop
+
+N = 2000
+
+
+def coning(n=N, seed=7):
+    """Rates at incommensurate frequencies (rad/s) plus a bias and noise; a still first second."""
+    t = np.arange(n) * 1e-3
+    rng = np.random.default_rng(seed)
+    w = np.stack([0.9 * np.sin(7.3 * t), 0.7 * np.cos(4.38 * t), 0.4 + 0.3 * np.sin(2.236 * t)], axis=1)
+    w[: n // 2] = 0.0  # still: the estimator learns the bias there
+    return w + np.array([0.01, -0.02, 0.005]) + 0.001 * rng.standard_normal((n, 3))
+
+
+def chunked(stream, gyr, size, **stamps):
+    """Feeds `gyr` (and its timestamps) in pieces of `size`; the attitudes (and refused flags) joined."""
+    qs, masks = [], []
+    for a in range(0, len(gyr), size):
+        part = {k: v[a : a + size] for k, v in stamps.items()}
+        r = stream.update(gyr[a : a + size], **part)
+        if isinstance(r, tuple):
+            qs.append(r[0])
+            masks.append(r[1])
+        else:
+            qs.append(r)
+    return np.concatenate(qs), (np.concatenate(masks) if masks else None)
+
+
+CASES = {
+    "period": (dict(dt=1e-3), dict(dt=1e-3), {}),
+    "seconds": (dict(timestamps=True), dict(), {"t": np.arange(N) * 1e-3 + 17.0}),
+    "ticks": (dict(tick_hz=1e6, tick_bits=16), dict(tick_hz=1e6, tick_bits=16),
+              {"ticks": (np.arange(N) * 1000 + 60000) % 65536}),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+@pytest.mark.parametrize("precision", ["f32", "f64"])
+@pytest.mark.parametrize("size", [1, 7, 400])
+def test_any_chunking_is_one_call_bit_for_bit(case, precision, size):
+    made, given, stamps = CASES[case]
+    gyr = coning()
+    gyr[[300, 301, 1500]] = np.nan  # refused and skipped: the clock and the estimator carry over
+    options = dict(
+        precision=precision,
+        alignment="PyNxPz",
+        bias=quatprop.BiasEstimator(window=100, gate=0.05, memory=8),
+        on_refused="mask",
+    )
+    whole, whole_mask = quatprop.integrate(gyr, **given, **stamps, **options)
+    s = quatprop.Stream(**made, **options)
+    q, mask = chunked(s, gyr, size, **stamps)
+    assert q.dtype == np.dtype(precision.replace("f", "float"))
+    np.testing.assert_array_equal(mask, whole_mask)
+    assert np.flatnonzero(mask).tolist() == [300, 301, 1500]
+    assert q.tobytes() == whole.tobytes(), f"chunks of {size} differ from one call"
+    assert s.refused == 3
+    # The estimator learned the still second's bias (body axes: PyNxPz maps sensor (x, y, z) to (y, -x, z)).
+    np.testing.assert_allclose(s.bias, [-0.02, -0.01, 0.005], atol=3e-4)
+
+
+def test_raise_leaves_the_stream_ready_for_the_rest_of_the_rows():
+    gyr = coning()
+    gyr[1777] = np.inf
+    options = dict(dt=1e-3, bias=quatprop.BiasEstimator(window=100, gate=0.05), precision="f64")
+    whole, _ = quatprop.integrate(gyr, on_refused="mask", **options)
+    s = quatprop.Stream(**options)
+    first = s.update(gyr[:1700])
+    with pytest.raises(quatprop.RefusedSample) as info:
+        s.update(gyr[1700:1900])
+    assert (info.value.index, info.value.kind) == (77, "NonFiniteRate")
+    rest = s.update(gyr[1778:])
+    # Before and after the refused sample, as the masked call over the whole stream.
+    assert first.tobytes() == whole[:1700].tobytes()
+    assert rest.tobytes() == whole[1778:].tobytes()
+    assert s.refused == 1
+
+
+def test_counters_set_attitude_and_reset():
+    gyr = coning(500)
+    s = quatprop.Stream(dt=1e-3, input="linear", precision="f64")
+    first = s.update(gyr)
+    assert s.steps == 499  # Linear: the first sample only starts the model
+    np.testing.assert_array_equal(s.attitude, first[-1])
+    assert s.bias is None and s.refused == 0 and s.saturated == 0
+    s.set_attitude([0.0, 2.0, 0.0, 0.0])
+    np.testing.assert_array_equal(s.attitude, [0.0, 1.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="ZeroQuaternion"):
+        s.set_attitude([0.0, 0.0, 0.0, 0.0])
+    s.reset()
+    assert s.steps == 0
+    np.testing.assert_array_equal(s.update(gyr), first)
+
+
+def test_a_fixed_bias_is_reported():
+    s = quatprop.Stream(dt=1e-3, bias=[0.1, 0.0, -0.2], precision="f64")
+    np.testing.assert_array_equal(s.bias, [0.1, 0.0, -0.2])
+
+
+@pytest.mark.parametrize(
+    "made, call, words",
+    [
+        (dict(dt=1e-3), dict(t=np.zeros(5)), "no timestamps"),
+        (dict(timestamps=True), dict(), "timestamps=True"),
+        (dict(tick_hz=1e6), dict(t=np.zeros(5)), "tick_hz"),
+    ],
+)
+def test_timestamps_must_match_the_time_base(made, call, words):
+    s = quatprop.Stream(**made)
+    with pytest.raises(ValueError, match=words):
+        s.update(np.zeros((5, 3)), **call)
+
+
+@pytest.mark.parametrize("made", [dict(), dict(dt=1e-3, timestamps=True), dict(dt=1e-3, tick_hz=1e6)])
+def test_exactly_one_time_base(made):
+    with pytest.raises(ValueError, match="exactly one time base"):
+        quatprop.Stream(**made)
