@@ -58,6 +58,9 @@ pub enum Error {
     InvalidClock,
     /// A bias estimator's window or memory is zero, or its stillness gate is not finite and positive.
     InvalidEstimator,
+    /// A gyro calibration has a number that is not finite, or its matrix `M · diag(sensitivity)` is
+    /// singular or worse conditioned than [`crate::frontend::Calibration::CONDITION_LIMIT`].
+    InvalidCalibration,
     /// A gyro's count scale (full scale or sensitivity) is zero, negative or not finite, or its rad/s per
     /// count is not a positive finite number in the working precision.
     InvalidScale,
@@ -96,6 +99,9 @@ impl fmt::Display for Error {
             Error::InvalidClock => f.write_str("clock counter width must be 1 to 32 bits"),
             Error::InvalidEstimator => f.write_str(
                 "bias estimator: window and memory must be positive, the gate finite and positive",
+            ),
+            Error::InvalidCalibration => f.write_str(
+                "gyro calibration: a number is not finite, or M*diag(sensitivity) is singular or ill-conditioned",
             ),
             Error::InvalidScale => {
                 f.write_str("count scale: full scale or sensitivity must be finite and positive")

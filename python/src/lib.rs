@@ -17,7 +17,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
-use quatprop::frontend::{Alignment, AxisRemap, BiasEstimator, FixedBias, FixedPeriod, TickClock};
+use quatprop::frontend::{
+    Alignment, AxisRemap, BiasEstimator, Calibration, FixedBias, FixedPeriod, TickClock,
+};
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
@@ -204,13 +206,15 @@ impl<T: Real> Visit<T> for Run<'_, '_, T> {
 }
 
 /// Everything a stream keeps between calls: the configured propagator, its clock, the front end
-/// (alignment to body axes, then a fixed bias or the bias estimator) and the count of refused samples.
+/// (the gyro's calibration, the alignment to body axes, then a fixed bias or the bias estimator) and the
+/// count of refused samples.
 /// `integrate` is one call on a new one; `Stream` keeps one, so any chunking of a stream gives the same
 /// bits as one call over the whole of it.
 #[derive(Clone, Copy)]
 struct Session<T: Real> {
     p: Configured<T>,
     clock: Clock<T>,
+    calibration: Option<Calibration<T>>,
     alignment: Option<Alignment<T>>,
     fixed: Option<FixedBias<T>>,
     estimator: Option<BiasEstimator<T>>,
@@ -251,6 +255,10 @@ impl<T: Real> Session<T> {
                 ))
             }
         };
+        let calibration = match args.calibration {
+            Some(c) => Some(calibration(c).map_err(config_error)?),
+            None => None,
+        };
         let alignment = match (&args.remap, args.matrix) {
             (Some(r), None) => Some(Alignment::from(axis_remap(r)?)),
             (None, Some(m)) => Some(
@@ -284,6 +292,7 @@ impl<T: Real> Session<T> {
         Ok(Self {
             p: config.build(q0).map_err(config_error)?,
             clock,
+            calibration,
             alignment,
             fixed,
             estimator,
@@ -293,16 +302,22 @@ impl<T: Real> Session<T> {
 
     /// Whether samples pass a front end (else they go to the propagator as they are).
     fn has_front_end(&self) -> bool {
-        self.alignment.is_some() || self.fixed.is_some() || self.estimator.is_some()
+        self.calibration.is_some()
+            || self.alignment.is_some()
+            || self.fixed.is_some()
+            || self.estimator.is_some()
     }
 
-    /// The front end over `rows`: alignment (sensor to body axes), then the bias (body axes), exactly as
-    /// the README's quick start composes them per sample. A sample the bias estimator refuses (NaN) is
+    /// The front end over `rows`: the gyro's calibration (sensor axes), the alignment (sensor to body
+    /// axes), then the bias (body axes), as the README's quick start composes them per sample. A sample the bias estimator refuses (NaN) is
     /// passed on unchanged, so the propagator refuses it too.
     fn front_end(&mut self, rows: &[[T; 3]]) -> Vec<[T; 3]> {
         rows.iter()
             .map(|r| {
                 let mut s = GyroSample::<T>::from_row(*r);
+                if let Some(c) = &self.calibration {
+                    s = c.apply(s);
+                }
                 if let Some(a) = &self.alignment {
                     s = a.apply(s);
                 }
@@ -385,6 +400,20 @@ struct StreamArgs {
     matrix: Option<[[f64; 3]; 3]>,
     bias: Option<[f64; 3]>,
     estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
+    calibration: Option<CalibrationArgs>,
+}
+
+/// A calibration as Python passes it: offset (rad/s), sensitivity, misalignment (rows).
+type CalibrationArgs = ([f64; 3], [f64; 3], [[f64; 3]; 3]);
+
+fn calibration<T: Real>(
+    (offset, sensitivity, m): CalibrationArgs,
+) -> Result<Calibration<T>, Error> {
+    Calibration::new(
+        vec3(offset),
+        vec3(sensitivity),
+        m.map(|row| row.map(T::from_f64)),
+    )
 }
 
 /// A session in the precision the stream was made with.
@@ -473,7 +502,7 @@ impl NativeStream {
     /// See `quatprop.Stream`; arguments already validated by the Python layer.
     #[new]
     #[pyo3(signature = (precision, period, timestamps, tick_hz, tick_bits, scheme, stabilizer, every, input,
-        coning, kahan, q0, mask, remap, matrix, bias, estimator))]
+        coning, kahan, q0, mask, remap, matrix, bias, estimator, calibration))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         precision: &str,
@@ -493,6 +522,7 @@ impl NativeStream {
         matrix: Option<[[f64; 3]; 3]>,
         bias: Option<[f64; 3]>,
         estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
+        calibration: Option<CalibrationArgs>,
     ) -> PyResult<Self> {
         let args = StreamArgs {
             period,
@@ -510,6 +540,7 @@ impl NativeStream {
             matrix,
             bias,
             estimator,
+            calibration,
         };
         let made = match precision {
             "f32" => Sessions::F32(Session::new(&args)?),
@@ -762,6 +793,27 @@ fn map_rows<'py, T: Real + numpy::Element, const I: usize, const O: usize>(
     out.into_flattened().into_pyarray(py).reshape([n, O])
 }
 
+macro_rules! calibrate_fn {
+    ($name:ident, $t:ty) => {
+        /// Calibrated rates (N, 3): `M · (s ⊙ (r − o))` per row, the core's `Calibration::apply`.
+        #[pyfunction]
+        fn $name<'py>(
+            py: Python<'py>,
+            gyr: PyReadonlyArray2<'py, $t>,
+            c: CalibrationArgs,
+        ) -> PyResult<Bound<'py, PyArray2<$t>>> {
+            let cal = calibration::<$t>(c).map_err(config_error)?;
+            map_rows::<$t, 3, 3>(py, gyr, |r| {
+                let w = cal.apply(GyroSample::from_row(r)).rate;
+                [w.x, w.y, w.z]
+            })
+        }
+    };
+}
+
+calibrate_fn!(calibrate_f32, f32);
+calibrate_fn!(calibrate_f64, f64);
+
 euler_fns!(
     to_euler_zyx_f32,
     from_euler_zyx_f32,
@@ -824,6 +876,8 @@ rust_loop_fn!(rust_loop_f64, f64);
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeStream>()?;
+    m.add_function(wrap_pyfunction!(calibrate_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(calibrate_f64, m)?)?;
     m.add_function(wrap_pyfunction!(to_euler_zyx_f32, m)?)?;
     m.add_function(wrap_pyfunction!(from_euler_zyx_f32, m)?)?;
     m.add_function(wrap_pyfunction!(to_euler_zxz_f32, m)?)?;

@@ -120,3 +120,39 @@ def test_timestamps_must_match_the_time_base(made, call, words):
 def test_exactly_one_time_base(made):
     with pytest.raises(ValueError, match="exactly one time base"):
         quatprop.Stream(**made)
+
+
+def test_calibration_is_applied_first_and_refused_when_ill_conditioned():
+    cal = quatprop.Calibration(
+        offset=[0.01, -0.02, 0.005], sensitivity=[1.02, 0.98, 1.01],
+        misalignment=[[1.0, 0.004, -0.002], [0.003, 1.0, 0.001], [-0.001, 0.002, 1.0]],
+    )
+    gyr = coning(500)
+    calibrated = quatprop.calibrate(gyr, cal, precision="f64")
+    direct = quatprop.integrate(calibrated, dt=1e-3, precision="f64", alignment="PyNxPz")
+    via = quatprop.integrate(gyr, dt=1e-3, precision="f64", calibration=cal, alignment="PyNxPz")
+    assert via.tobytes() == direct.tobytes()
+    with pytest.raises(ValueError, match="InvalidCalibration"):
+        quatprop.Stream(dt=1e-3, calibration=quatprop.Calibration(sensitivity=[1.0, 1.0, 0.005]))
+    with pytest.raises(ValueError, match="InvalidCalibration"):
+        quatprop.calibrate(gyr, quatprop.Calibration(offset=[np.nan, 0.0, 0.0]))
+
+
+def test_calibration_agrees_with_imufusion_model_inertial_bit_for_bit():
+    imufusion = pytest.importorskip("imufusion")
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        offset = rng.normal(0.0, 0.05, 3).astype(np.float32)
+        sensitivity = (1.0 + rng.normal(0.0, 0.03, 3)).astype(np.float32)
+        m = (np.eye(3) + rng.normal(0.0, 0.01, (3, 3))).astype(np.float32)
+        raw = rng.normal(0.0, 2.0, (1, 3)).astype(np.float32)
+        cal = quatprop.Calibration(offset, sensitivity, m)
+        ours = quatprop.calibrate(raw, cal)[0]
+        theirs = np.asarray(
+            imufusion.model_inertial(raw[0].astype(np.float64), m.astype(np.float64),
+                                     sensitivity.astype(np.float64), offset.astype(np.float64)),
+            dtype=np.float64,
+        )
+        # Fusion computes in float: its float64 result holds a float32 value.
+        assert theirs.astype(np.float32).astype(np.float64).tobytes() == theirs.tobytes()
+        assert ours.tobytes() == theirs.astype(np.float32).tobytes(), (ours, theirs)

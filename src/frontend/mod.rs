@@ -4,6 +4,7 @@
 //! | piece | turns | into |
 //! |---|---|---|
 //! | [`CountScale`] | raw counts `[i16; 3]` | a [`GyroSample`] in rad/s, flagged `saturated` at a rail |
+//! | [`Calibration`] | a reading in the sensor's own (non-orthogonal, mis-scaled) axes | the calibrated rate: offset, per-axis sensitivity, misalignment |
 //! | [`Alignment`] | a sample in sensor axes | the same sample in body axes (one of the 24 [`AxisRemap`]s, or a rotation matrix) |
 //! | [`FixedBias`], [`BiasEstimator`] | a biased sample | the sample minus the bias (fixed, or learned while the body is still) |
 //! | [`FixedPeriod`] | a sample period given once | the `dt` of each sample, summing to `k·period` exactly |
@@ -35,11 +36,13 @@
 
 mod alignment;
 mod bias;
+mod calibration;
 mod scale;
 mod time;
 
 pub use alignment::{Alignment, AxisRemap, ROTATION_TOLERANCE};
 pub use bias::{BiasEstimator, FixedBias};
+pub use calibration::Calibration;
 pub use scale::CountScale;
 pub use time::{FixedPeriod, TickClock};
 

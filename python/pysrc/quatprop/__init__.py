@@ -29,6 +29,8 @@ from . import _native
 __all__ = [
     "integrate",
     "Stream",
+    "Calibration",
+    "calibrate",
     "RefusedSample",
     "BiasEstimator",
     "to_euler_zyx",
@@ -97,6 +99,49 @@ class BiasEstimator:
 _DTYPES = {"f32": np.float32, "f64": np.float64}
 
 
+@dataclass(frozen=True)
+class Calibration:
+    """A gyro's own calibration, in the sensor's axes (the core's ``frontend::Calibration``):
+    ``ω = M · (s ⊙ (r − o))`` for a reading ``r`` (rad/s), before the mounting (``alignment``).
+
+    Fusion's ``FusionModelInertial`` (imufusion's ``model_inertial``) in the same order and arithmetic:
+    the same numbers give the same bits in float32.
+
+    Attributes:
+        offset: ``o`` (rad/s), the zero-rate output, subtracted first.
+        sensitivity: ``s``, per-axis scale factors (near 1).
+        misalignment: ``M``, 3×3 (near the identity): the non-orthogonality of the sensor's axes.
+
+    Refused (``ValueError``, ``InvalidCalibration``) when a number is not finite or ``M · diag(s)`` is
+    singular or has a condition number ``‖A‖∞‖A⁻¹‖∞`` above 100.
+    """
+
+    offset: Sequence[float] = (0.0, 0.0, 0.0)
+    sensitivity: Sequence[float] = (1.0, 1.0, 1.0)
+    misalignment: Sequence[Sequence[float]] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+    def _native(self):
+        o = np.asarray(self.offset, dtype=np.float64)
+        s = np.asarray(self.sensitivity, dtype=np.float64)
+        m = np.asarray(self.misalignment, dtype=np.float64)
+        if o.shape != (3,) or s.shape != (3,) or m.shape != (3, 3):
+            raise ValueError(
+                f"Calibration: offset and sensitivity must have 3 values and misalignment 3x3, got "
+                f"{o.shape}, {s.shape}, {m.shape}"
+            )
+        return ([float(c) for c in o], [float(c) for c in s], [[float(e) for e in row] for row in m])
+
+
+def calibrate(gyr, calibration: Calibration, precision: str = "f32") -> np.ndarray:
+    """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates, in the dtype of ``precision``."""
+    if not isinstance(calibration, Calibration):
+        raise TypeError(f"calibration must be a quatprop.Calibration, got {type(calibration).__name__}")
+    precision = _choice("precision", precision, tuple(_DTYPES))
+    rows = _array("gyr", gyr, _DTYPES[precision], 2, 3)
+    fn = _native.calibrate_f32 if precision == "f32" else _native.calibrate_f64
+    return fn(rows, calibration._native())
+
+
 def _array(name: str, value, dtype, ndim: int, last: Optional[int] = None) -> np.ndarray:
     try:
         a = np.asarray(value)
@@ -143,7 +188,9 @@ _OPTIONS_DOC = """
         accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
         precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result.
         q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
-        alignment: sensor → body axes, applied to each sample first: an axis remap name (one of
+        calibration: a :class:`Calibration` (offset, sensitivity, misalignment in the sensor's axes),
+            applied to each sample first.
+        alignment: sensor → body axes, applied after the calibration: an axis remap name (one of
             :data:`AXIS_REMAPS`) or a 3×3 rotation matrix ``R`` with ``ω_body = R ω_sensor``; a matrix
             that is not a rotation (within 1e-4) raises ``ValueError``.
         bias: subtracted after the alignment (body axes): a fixed ``[bx, by, bz]`` (rad/s) or a
@@ -197,6 +244,7 @@ class Stream:
         q0=None,
         alignment=None,
         bias=None,
+        calibration: Optional[Calibration] = None,
         on_refused: str = "raise",
     ) -> None:
         self._precision = _choice("precision", precision, tuple(_DTYPES))
@@ -265,6 +313,14 @@ class Stream:
                     raise ValueError(f"bias must be [bx, by, bz] (rad/s) or a BiasEstimator, got shape {ba.shape}")
                 fixed_bias = [float(c) for c in ba]
 
+        cal = None
+        if calibration is not None:
+            if not isinstance(calibration, Calibration):
+                raise TypeError(f"calibration must be a quatprop.Calibration, got {type(calibration).__name__}")
+            if input == "delta_angles":
+                raise ValueError("calibration (rad/s readings) does not apply to delta angles")
+            cal = calibration._native()
+
         self._native = _native.NativeStream(
             self._precision,
             period,
@@ -283,6 +339,7 @@ class Stream:
             matrix,
             fixed_bias,
             estimator,
+            cal,
         )
 
     def update(self, gyr, t=None, *, ticks=None):
@@ -389,6 +446,7 @@ def integrate(
     q0=None,
     alignment=None,
     bias=None,
+    calibration: Optional[Calibration] = None,
     on_refused: str = "raise",
 ):
     """Integrates body-frame gyro samples into attitude quaternions, bit for bit as the Rust library.
@@ -421,7 +479,9 @@ def integrate(
         accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
         precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result.
         q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
-        alignment: sensor → body axes, applied to each sample first: an axis remap name (one of
+        calibration: a :class:`Calibration` (offset, sensitivity, misalignment in the sensor's axes),
+            applied to each sample first.
+        alignment: sensor → body axes, applied after the calibration: an axis remap name (one of
             :data:`AXIS_REMAPS`) or a 3×3 rotation matrix ``R`` with ``ω_body = R ω_sensor``; a matrix
             that is not a rotation (within 1e-4) raises ``ValueError``.
         bias: subtracted after the alignment (body axes): a fixed ``[bx, by, bz]`` (rad/s) or a
@@ -461,6 +521,7 @@ def integrate(
         q0=q0,
         alignment=alignment,
         bias=bias,
+        calibration=calibration,
         on_refused=on_refused,
     )
     return stream.update(gyr, t, ticks=ticks)

@@ -44,6 +44,22 @@ class BiasEstimator:
         self, window: int, gate: float, memory: int = 64, initial: Optional[Sequence[float]] = None
     ) -> None: ...
 
+class Calibration:
+    """A gyro's calibration in the sensor's axes: ω = M · (s ⊙ (r − o)) (Fusion's model_inertial)."""
+
+    offset: Sequence[float]
+    sensitivity: Sequence[float]
+    misalignment: Sequence[Sequence[float]]
+    def __init__(
+        self,
+        offset: Sequence[float] = ...,
+        sensitivity: Sequence[float] = ...,
+        misalignment: Sequence[Sequence[float]] = ...,
+    ) -> None: ...
+
+def calibrate(gyr: npt.ArrayLike, calibration: Calibration, precision: Precision = "f32") -> FloatArray:
+    """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates."""
+
 class Stream:
     """Samples integrated call by call, all state kept between calls: any chunking gives the bits of one
     `integrate` call over the whole stream. Exactly one time base: dt (s), timestamps=True (update takes t)
@@ -64,6 +80,7 @@ class Stream:
         q0: Optional[npt.ArrayLike] = None,
         alignment: Union[str, npt.ArrayLike, None] = None,
         bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
+        calibration: Optional[Calibration] = None,
         on_refused: Literal["raise", "mask"] = "raise",
     ) -> None: ...
     def update(
@@ -101,6 +118,7 @@ def integrate(
     q0: Optional[npt.ArrayLike] = None,
     alignment: Union[str, npt.ArrayLike, None] = None,
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
+    calibration: Optional[Calibration] = None,
     on_refused: Literal["raise"] = "raise",
 ) -> FloatArray:
     """(N, 3) body rates (rad/s; increments in rad for delta_angles) → (N, 4) attitudes [w, x, y, z]
@@ -126,6 +144,7 @@ def integrate(
     q0: Optional[npt.ArrayLike] = None,
     alignment: Union[str, npt.ArrayLike, None] = None,
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
+    calibration: Optional[Calibration] = None,
     on_refused: Literal["mask"],
 ) -> Tuple[FloatArray, npt.NDArray[np.bool_]]:
     """As above; a refused sample is skipped (state kept, interval carried into the next sample) and
