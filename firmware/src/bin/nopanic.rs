@@ -4,7 +4,7 @@
 //! stabilizer (four zero-sized, the run-time `StabilizerKind`) × accumulator (`Plain`, `Kahan`): see
 //! `quatprop_firmware::configs`. The panic handler is the `panic-never` crate's, which references a symbol
 //! that does not exist, so if any panic path is still reachable after optimization the link fails. The
-//! sensor front end (`CountScale`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator`, `FixedPeriod`,
+//! sensor front end (`CountScale`, `Calibration`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator`, `FixedPeriod`,
 //! `TickClock`) is called once, with opaque inputs, in every image; `start` and the FIFO bursts
 //! (`push_burst` at a fixed period, `push_burst_timed` with sensor ticks) for every input model ×
 //! accumulator through the run-time `SchemeKind` × `StabilizerKind` (whose dispatch reaches every scheme's
@@ -31,7 +31,7 @@ use cortex_m_rt::entry;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
 use quatprop::config::{AccumulatorKind, Config, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
+    Alignment, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod, TickClock,
 };
 use quatprop::input::coning::{ConingKind, TwoSample};
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
@@ -142,6 +142,15 @@ fn front_end() {
         return;
     };
     let s = scale.sample(black_box([1, -2, i16::MAX]));
+    let m = [[1.0_f32, 0.01, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let s = match Calibration::new(
+        black_box(Vec3::new(0.01, 0.0, -0.02)),
+        black_box(Vec3::new(1.01, 0.99, 1.0)),
+        black_box(m),
+    ) {
+        Ok(c) => c.apply(s),
+        Err(_) => s,
+    };
     let s = black_box(AxisRemap::PyNxPz).apply(s);
     let identity = [[1.0_f32, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let s = match Alignment::from_matrix(black_box(identity)) {
