@@ -88,13 +88,32 @@ def test_bad_arguments_raise_clear_errors(kwargs, error, words):
 
 def test_dtypes_and_layouts_are_accepted():
     base = spin(50)
-    want = quatprop.integrate(base, dt=1e-3)
+    want = quatprop.integrate(base, dt=1e-3, precision="f32")
     assert want.dtype == np.float32 and want.shape == (50, 4)
     # float32 input, Fortran order, a strided view, a list: the same result (each rounded once to f32).
     for gyr in (base.astype(np.float32), np.asfortranarray(base), np.repeat(base, 2, axis=0)[::2], base.tolist()):
-        np.testing.assert_array_equal(quatprop.integrate(gyr, dt=1e-3), want)
-    assert quatprop.integrate(base, dt=1e-3, precision="f64").dtype == np.float64
+        np.testing.assert_array_equal(quatprop.integrate(gyr, dt=1e-3, precision="f32"), want)
     assert quatprop.integrate(np.zeros((0, 3)), dt=1e-3).shape == (0, 4)
+
+
+def test_the_default_precision_follows_the_input():
+    base = spin(50)
+    f64 = quatprop.integrate(base, dt=1e-3)
+    assert f64.tobytes() == quatprop.integrate(base, dt=1e-3, precision="f64").tobytes()
+    assert quatprop.integrate(base.tolist(), dt=1e-3).dtype == np.float64
+    f32 = quatprop.integrate(base.astype(np.float32), dt=1e-3)
+    assert f32.dtype == np.float32
+    # An explicit precision wins over the input's dtype.
+    assert quatprop.integrate(base.astype(np.float32), dt=1e-3, precision="f64").dtype == np.float64
+    # A stream decides at its first update; setting its attitude first decides f64.
+    s = quatprop.Stream(dt=1e-3)
+    assert s.update(base.astype(np.float32)).dtype == np.float32
+    assert s.update(base).dtype == np.float32  # decided: later samples are converted
+    s = quatprop.Stream(dt=1e-3)
+    s.set_attitude([1.0, 0.0, 0.0, 0.0])
+    assert s.update(base.astype(np.float32)).dtype == np.float64
+    assert quatprop.calibrate(base.astype(np.float32), quatprop.Calibration()).dtype == np.float32
+    assert quatprop.calibrate(base, quatprop.Calibration()).dtype == np.float64
 
 
 def test_the_gil_is_released_while_integrating():

@@ -132,10 +132,13 @@ class Calibration:
         return ([float(c) for c in o], [float(c) for c in s], [[float(e) for e in row] for row in m])
 
 
-def calibrate(gyr, calibration: Calibration, precision: str = "f32") -> np.ndarray:
-    """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates, in the dtype of ``precision``."""
+def calibrate(gyr, calibration: Calibration, precision: Optional[str] = None) -> np.ndarray:
+    """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates, in the dtype of ``precision``
+    (``None``: float32 for float32 readings, else float64)."""
     if not isinstance(calibration, Calibration):
         raise TypeError(f"calibration must be a quatprop.Calibration, got {type(calibration).__name__}")
+    if precision is None:
+        precision = "f32" if np.asarray(gyr).dtype == np.float32 else "f64"
     precision = _choice("precision", precision, tuple(_DTYPES))
     rows = _array("gyr", gyr, _DTYPES[precision], 2, 3)
     fn = _native.calibrate_f32 if precision == "f32" else _native.calibrate_f64
@@ -186,7 +189,9 @@ _OPTIONS_DOC = """
             latency) is the recommended model for a rate gyro.
         coning: the coning correction of ``input="delta_angles"``, one of :data:`CONINGS`.
         accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
-        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result.
+        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result; ``None``
+            (the default): the samples' dtype decides, float32 → ``"f32"``, anything else → ``"f64"``
+            (for a stream, the first update's; one whose attitude is set before it is ``"f64"``).
         q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
         calibration: a :class:`Calibration` (offset, sensitivity, misalignment in the sensor's axes),
             applied to each sample first.
@@ -240,15 +245,14 @@ class Stream:
         input: str = "history",
         coning: str = "two_sample",
         accumulator: str = "plain",
-        precision: str = "f32",
+        precision: Optional[str] = None,
         q0=None,
         alignment=None,
         bias=None,
         calibration: Optional[Calibration] = None,
         on_refused: str = "raise",
     ) -> None:
-        self._precision = _choice("precision", precision, tuple(_DTYPES))
-        self._dtype = _DTYPES[self._precision]
+        self._precision = None if precision is None else _choice("precision", precision, tuple(_DTYPES))
         scheme = _choice("scheme", scheme, SCHEMES)
         stab, every = _stabilizer(stabilizer)
         input = _choice("input", input, INPUTS)
@@ -321,8 +325,7 @@ class Stream:
                 raise ValueError("calibration (rad/s readings) does not apply to delta angles")
             cal = calibration._native()
 
-        self._native = _native.NativeStream(
-            self._precision,
+        self._args = (
             period,
             bool(timestamps),
             float(tick_hz) if tick_hz is not None else None,
@@ -341,6 +344,15 @@ class Stream:
             estimator,
             cal,
         )
+        # Made now, so a bad option fails here; remade in f32 if the first samples decide so.
+        self._native = _native.NativeStream(self._precision or "f64", *self._args)
+
+    def _decide(self, precision: str) -> None:
+        """Fixes the precision left open (``precision=None``) before the state first changes."""
+        if self._precision is None:
+            if precision != "f64":
+                self._native = _native.NativeStream(precision, *self._args)
+            self._precision = precision
 
     def update(self, gyr, t=None, *, ticks=None):
         """Integrates the next samples; row ``k`` of the result is the attitude after sample ``k``.
@@ -359,7 +371,9 @@ class Stream:
                 ``gyr``.
             ValueError: a bad shape, or timestamps that do not match the stream's time base.
         """
-        gyr = _array("gyr", gyr, self._dtype, 2, 3)
+        if self._precision is None:
+            self._decide("f32" if np.asarray(gyr).dtype == np.float32 else "f64")
+        gyr = _array("gyr", gyr, _DTYPES[self._precision], 2, 3)
         n = gyr.shape[0]
         t_arr = None
         tick_arr = None
@@ -419,6 +433,7 @@ class Stream:
         qa = np.asarray(q, dtype=np.float64)
         if qa.shape != (4,):
             raise ValueError(f"q must be [w, x, y, z], got shape {qa.shape}")
+        self._decide("f64")
         self._native.set_attitude([float(c) for c in qa])
 
     def reset(self) -> None:
@@ -442,7 +457,7 @@ def integrate(
     input: str = "history",
     coning: str = "two_sample",
     accumulator: str = "plain",
-    precision: str = "f32",
+    precision: Optional[str] = None,
     q0=None,
     alignment=None,
     bias=None,
@@ -477,7 +492,9 @@ def integrate(
             latency) is the recommended model for a rate gyro.
         coning: the coning correction of ``input="delta_angles"``, one of :data:`CONINGS`.
         accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
-        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result.
+        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result; ``None``
+            (the default): the samples' dtype decides, float32 → ``"f32"``, anything else → ``"f64"``
+            (for a stream, the first update's; one whose attitude is set before it is ``"f64"``).
         q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
         calibration: a :class:`Calibration` (offset, sensitivity, misalignment in the sensor's axes),
             applied to each sample first.

@@ -57,7 +57,7 @@ class Calibration:
         misalignment: Sequence[Sequence[float]] = ...,
     ) -> None: ...
 
-def calibrate(gyr: npt.ArrayLike, calibration: Calibration, precision: Precision = "f32") -> FloatArray:
+def calibrate(gyr: npt.ArrayLike, calibration: Calibration, precision: Optional[Precision] = None) -> FloatArray:
     """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates."""
 
 class Stream:
@@ -76,7 +76,7 @@ class Stream:
         input: Input = "history",
         coning: Coning = "two_sample",
         accumulator: Accumulator = "plain",
-        precision: Precision = "f32",
+        precision: Optional[Precision] = None,
         q0: Optional[npt.ArrayLike] = None,
         alignment: Union[str, npt.ArrayLike, None] = None,
         bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
@@ -114,7 +114,7 @@ def integrate(
     input: Input = "history",
     coning: Coning = "two_sample",
     accumulator: Accumulator = "plain",
-    precision: Precision = "f32",
+    precision: Optional[Precision] = None,
     q0: Optional[npt.ArrayLike] = None,
     alignment: Union[str, npt.ArrayLike, None] = None,
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
@@ -140,7 +140,7 @@ def integrate(
     input: Input = "history",
     coning: Coning = "two_sample",
     accumulator: Accumulator = "plain",
-    precision: Precision = "f32",
+    precision: Optional[Precision] = None,
     q0: Optional[npt.ArrayLike] = None,
     alignment: Union[str, npt.ArrayLike, None] = None,
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
