@@ -219,6 +219,8 @@ struct Session<T: Real> {
     fixed: Option<FixedBias<T>>,
     estimator: Option<BiasEstimator<T>>,
     refused: u64,
+    /// The sum of the refused delta angles (rad, body axes; finite ones only): rotation not integrated.
+    lost: [f64; 3],
 }
 
 impl<T: Real> Session<T> {
@@ -297,6 +299,7 @@ impl<T: Real> Session<T> {
             fixed,
             estimator,
             refused: 0,
+            lost: [0.0; 3],
         })
     }
 
@@ -365,12 +368,26 @@ impl<T: Real> Session<T> {
             mask: mask.as_deref_mut(),
         });
         self.clock = time.clock;
+        let deltas = matches!(self.p.config().input, InputKind::DeltaAngles(_));
+        let mut lose = |row: &[T; 3]| {
+            if deltas && row.iter().all(|e| e.is_finite()) {
+                for (l, e) in self.lost.iter_mut().zip(row) {
+                    *l += e.to_f64();
+                }
+            }
+        };
         match &result {
             Ok(()) => {
-                let flagged = mask.map_or(0, |m| m.iter().filter(|&&f| f).count());
-                self.refused += flagged as u64;
+                let flags = mask.as_deref().unwrap_or(&[]);
+                for (row, _) in input.iter().zip(flags).filter(|(_, &f)| f) {
+                    lose(row);
+                }
+                self.refused += flags.iter().filter(|&&f| f).count() as u64;
             }
             Err(r) => {
+                if let Some(row) = input.get(r.index) {
+                    lose(row);
+                }
                 self.refused += 1;
                 // The estimator has seen the whole call: back to where the refused sample left it.
                 if estimator.is_some() {
@@ -617,6 +634,15 @@ impl NativeStream {
         match &self.now {
             Sessions::F32(s) => (s.p.steps(), s.refused, s.p.saturated_samples()),
             Sessions::F64(s) => (s.p.steps(), s.refused, s.p.saturated_samples()),
+        }
+    }
+
+    /// The sum of the refused delta angles `[x, y, z]` (rad, body axes): the rotation a refused
+    /// increment took with it (a NaN or infinite one is not counted: its angle is unknown).
+    fn lost_angle(&self) -> [f64; 3] {
+        match &self.now {
+            Sessions::F32(s) => s.lost,
+            Sessions::F64(s) => s.lost,
         }
     }
 

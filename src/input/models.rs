@@ -438,6 +438,12 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
 /// `q ← q ⊗ exp_q(φ)` with an exponential-map scheme (Runge–Kutta schemes see the constant rate `φ/h`).
 /// The update closes when the correction has its increments; `h` is the sum of their `dt`.
 ///
+/// A refused increment is not integrated: its rotation is lost (a refused rate sample loses no time, its
+/// interval going into the next one; an increment *is* the rotation). An increment that arrives while
+/// the update is still open is kept without a check of the scheme's step-angle bound, so one beyond it
+/// makes the closing step, and every later one, refused until [`InputModel::restart`] (docs/bad-input.md,
+/// known defect).
+///
 /// ```
 /// use quatprop::input::{coning::TwoSample, DeltaAngles};
 /// use quatprop::{scheme::ExpMap, stabilize::Off, DeltaAngle, Propagator, Quat, Vec3};

@@ -424,6 +424,14 @@ class Stream:
         return self._native.counts()[1]
 
     @property
+    def lost_angle(self) -> np.ndarray:
+        """The sum of the refused delta angles ``[x, y, z]`` (rad, body axes): the rotation that refused
+        increments took with them (``input="delta_angles"``; a refused rate sample loses no time, its
+        interval goes into the next one, but a refused increment's angle is not integrated). NaN or
+        infinite increments are not counted: their angle is unknown."""
+        return np.array(self._native.lost_angle())
+
+    @property
     def saturated(self) -> int:
         """Accepted samples flagged as saturated."""
         return self._native.counts()[2]
