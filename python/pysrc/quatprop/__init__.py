@@ -449,7 +449,8 @@ class Stream:
         self._native.reset()
 
 
-Stream.__doc__ = Stream.__doc__.format(options=_OPTIONS_DOC)
+if Stream.__doc__:  # None under python -OO
+    Stream.__doc__ = Stream.__doc__.format(options=_OPTIONS_DOC)
 
 
 def integrate(
@@ -494,28 +495,7 @@ def integrate(
         ticks: (N,) integer timestamps of the sensor's clock (``tick_hz`` ticks per second, a counter of
             ``tick_bits`` bits that wraps): the core's ``TickClock``, as ``Propagator::push_burst_timed``.
             Give exactly one of ``dt``, ``t``, ``ticks``.
-        scheme: one of :data:`SCHEMES`.
-        stabilizer: ``"off"``, ``"normalize"``, ``"first_order"`` or ``"every:N"``.
-        input: one of :data:`INPUTS`. ``history`` (cubic through the last four samples, fourth order, no
-            latency) is the recommended model for a rate gyro.
-        coning: the coning correction of ``input="delta_angles"``, one of :data:`CONINGS`.
-        accumulator: ``"plain"`` or ``"kahan"`` (compensated addition of each increment).
-        precision: ``"f32"`` or ``"f64"``: the working precision and the dtype of the result; ``None``
-            (the default): the samples' dtype decides, float32 → ``"f32"``, anything else → ``"f64"``
-            (for a stream, the first update's; one whose attitude is set before it is ``"f64"``).
-        q0: initial attitude ``[w, x, y, z]`` (body to reference; normalized), identity by default.
-        calibration: a :class:`Calibration` (offset, sensitivity, misalignment in the sensor's axes),
-            applied to each sample first.
-        alignment: sensor → body axes, applied after the calibration: an axis remap name (one of
-            :data:`AXIS_REMAPS`) or a 3×3 rotation matrix ``R`` with ``ω_body = R ω_sensor``; a matrix
-            that is not a rotation (within 1e-4) raises ``ValueError``.
-        bias: subtracted after the alignment (body axes): a fixed ``[bx, by, bz]`` (rad/s) or a
-            :class:`BiasEstimator`. Not with ``delta_angles``.
-        on_refused: ``"raise"``: a refused sample raises :class:`RefusedSample` (its index, kind and
-            reason). ``"mask"``: a refused sample is skipped — the state stays as after the last
-            accepted sample and its interval carries into the next sample, as the Rust docs prescribe —
-            and ``(q, refused)`` is returned, ``refused`` a boolean (N,) array.
-
+{options}
     Returns:
         q: (N, 4) attitudes ``[w, x, y, z]`` (scalar first, Hamilton, body to reference), dtype of
         ``precision``; or ``(q, refused)`` with ``on_refused="mask"``.
@@ -550,6 +530,10 @@ def integrate(
         on_refused=on_refused,
     )
     return stream.update(gyr, t, ticks=ticks)
+
+
+if integrate.__doc__:  # None under python -OO
+    integrate.__doc__ = integrate.__doc__.format(options=_OPTIONS_DOC.lstrip("\n"))
 
 
 def _rows(name: str, a, width: int) -> Tuple[np.ndarray, tuple]:
