@@ -264,6 +264,9 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
                 self.counters.uncorrected = self.counters.uncorrected.wrapping_add(1);
                 self.counters.pending = pending;
             }
+        } else if let Some((segment, h)) = self.input.pending_step(&sample, dt) {
+            // Kept for a later step: beyond the bound on its own, it would refuse every later step.
+            self.scheme.check(&segment, h)?;
         }
         self.input = input;
         self.count_saturated(&sample);

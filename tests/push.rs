@@ -456,3 +456,31 @@ fn every_error_variant_of_push_and_new_is_returned_for_its_input_with_the_state_
     assert_eq!(seen.len(), 10, "every variant: {seen:?}");
     assert!(!seen.iter().any(|s| s.starts_with("unknown")));
 }
+
+/// A delta angle beyond the scheme's bound that a two-sample coning correction would keep for the next
+/// update is refused when it arrives, and the stream goes on: before, it was kept, and every update after
+/// it was refused (the stream never recovered).
+#[test]
+fn a_kept_delta_angle_beyond_the_bound_is_refused_when_it_arrives() {
+    let small = DeltaAngle::new(Vec3::new(1e-3, -2e-3, 0.5e-3));
+    let big = DeltaAngle::new(Vec3::new(6.0, 0.0, 0.0)); // beyond Rk4's 4√2 rad
+    let mut p = Propagator::new(Quat::IDENTITY, Rk4, DeltaAngles::new(TwoSample), Off).unwrap();
+    for _ in 0..4 {
+        p.push(small, 1e-3).unwrap();
+    }
+    let before = p;
+    let e = p.push(big, 1e-3).unwrap_err();
+    assert!(
+        matches!(e, Error::StepAngleBeyondStability { step_angle, .. } if step_angle == 6.0),
+        "{e:?}"
+    );
+    assert_eq!(p, before);
+    // The next pairs close as if the big increment never came.
+    for _ in 0..6 {
+        p.push(small, 1e-3).unwrap();
+    }
+    assert_eq!(p.steps(), 5);
+    let angle = p.attitude().angle_to(Quat::IDENTITY);
+    let want = 10.0 * small.angle.norm();
+    assert!((angle - want).abs() < 1e-12, "{angle} vs {want}");
+}

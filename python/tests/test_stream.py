@@ -162,10 +162,7 @@ def test_refused_delta_angles_report_the_angle_they_took():
     d = np.tile([1e-3, -2e-3, 0.5e-3], (100, 1))
     d[40] = [6.0, 0.0, 0.0]  # beyond Rk4's step-angle bound (4√2 rad): refused, its angle not integrated
     d[41] = [np.nan, 0.0, 0.0]  # refused, its angle unknown: not counted
-    # Uncorrected coning: every increment closes its own step (with a multi-increment correction an
-    # increment beyond the bound waits in the model and every later step is refused: issue 27's note).
-    s = quatprop.Stream(dt=1e-3, input="delta_angles", coning="uncorrected", scheme="rk4", precision="f64",
-                        on_refused="mask")
+    s = quatprop.Stream(dt=1e-3, input="delta_angles", scheme="rk4", precision="f64", on_refused="mask")
     q, refused = s.update(d)
     assert np.flatnonzero(refused).tolist() == [40, 41]
     np.testing.assert_array_equal(s.lost_angle, [6.0, 0.0, 0.0])
@@ -173,7 +170,7 @@ def test_refused_delta_angles_report_the_angle_they_took():
     angle = 2.0 * np.arccos(min(1.0, abs(q[-1][0])))
     np.testing.assert_allclose(angle, 98 * np.linalg.norm(d[0]), rtol=1e-9)
     with pytest.raises(quatprop.RefusedSample):
-        quatprop.Stream(dt=1e-3, input="delta_angles", coning="uncorrected", scheme="rk4").update(d)
+        quatprop.Stream(dt=1e-3, input="delta_angles", scheme="rk4").update(d)
     rates = quatprop.Stream(dt=1e-3, precision="f64", on_refused="mask")
     rates.update(np.where(np.isfinite(d), d, np.nan) * 1e3)
     np.testing.assert_array_equal(rates.lost_angle, [0.0, 0.0, 0.0])  # rates: no angle is lost, time carries

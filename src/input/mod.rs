@@ -163,6 +163,17 @@ pub trait InputModel<T: Real>: Copy {
         self.accept(sample, dt)
     }
 
+    /// The step `sample` would make on its own, when [`InputModel::accept`] keeps it for a later step:
+    /// the propagator checks it against the scheme's stability bound when it arrives, so a sample beyond
+    /// the bound is refused at once instead of being kept and refusing every step after it. `None` (the
+    /// default): nothing to check before the step closes.
+    #[allow(clippy::type_complexity)]
+    #[inline(always)]
+    fn pending_step(&self, sample: &Self::Sample, dt: T) -> Option<(Self::Segment, T)> {
+        let _ = (sample, dt);
+        None
+    }
+
     /// Takes the first sample of a stream, which sets its time origin (there is no `dt` before it): a
     /// restarted model that keeps the sample as the start of its next step where it can (`Linear`,
     /// `History`, `TwiceRate`); models that need the sample's interval (`Hold`, `GaussPoints`,

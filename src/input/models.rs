@@ -440,9 +440,8 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
 ///
 /// A refused increment is not integrated: its rotation is lost (a refused rate sample loses no time, its
 /// interval going into the next one; an increment *is* the rotation). An increment that arrives while
-/// the update is still open is kept without a check of the scheme's step-angle bound, so one beyond it
-/// makes the closing step, and every later one, refused until [`InputModel::restart`] (docs/bad-input.md,
-/// known defect).
+/// the update is still open is checked on its own against the scheme's step-angle bound
+/// ([`InputModel::pending_step`]): kept, one beyond the bound would refuse the update and every later one.
 ///
 /// ```
 /// use quatprop::input::{coning::TwoSample, DeltaAngles};
@@ -548,6 +547,19 @@ impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
         dt: T,
     ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
         self.accept_with::<true>(sample, dt)
+    }
+    /// A kept increment's own rotation: any update holding an increment beyond the scheme's bound
+    /// would be refused, and so would every later one while it stays kept.
+    #[inline(always)]
+    fn pending_step(&self, sample: &DeltaAngle<T>, dt: T) -> Option<(RotationVector<T>, T)> {
+        Some((
+            RotationVector {
+                phi: sample.angle,
+                low: Vec3::ZERO,
+                h: dt,
+            },
+            dt,
+        ))
     }
     #[inline(always)]
     fn start(&self, sample: &DeltaAngle<T>) -> Result<Self, Error> {

@@ -8,8 +8,9 @@
 //! - `Err` ⇒ the propagator is bit for bit what it was (`==` on every field, the attitude's bit patterns,
 //!   and the `Debug` text, which tells −0 from +0 in every field), and the error is of the class the input
 //!   calls for (`NonFiniteStep`, `NonPositiveStep`, `NonFiniteRate` from the input alone; otherwise only a
-//!   step-closing sample may be refused, with `StepAngleBeyondStability { step_angle > limit }`,
-//!   `GainBeyondStability { gain_step > limit }` for Baumgarte only, or `NonFiniteResult`);
+//!   step-closing sample, or a delta angle kept for a later step (checked on its own), may be refused,
+//!   with `StepAngleBeyondStability { step_angle > limit }`, `GainBeyondStability { gain_step > limit }`
+//!   for Baumgarte only, or `NonFiniteResult` (never for a kept delta angle: it takes no step));
 //! - `Ok` ⇒ a finite attitude; `steps()` advances by one exactly when the model's documented schedule
 //!   (mirrored in [`super::model::Schedule`]) closes a step, otherwise the attitude is bit for bit unchanged;
 //!   `corrections()` follows the stabilizer (Off never, Normalize/FirstOrder every step, Every(n) every n-th
@@ -374,7 +375,16 @@ fn drive<
                 match input_error(v.is_finite(), dt) {
                     Some(want) => assert_eq!(e, want),
                     None => {
-                        assert!(closes, "{e:?} on a sample that closes no step");
+                        // A kept delta angle is checked on its own (`InputModel::pending_step`).
+                        let kept_delta = delta && !closes;
+                        assert!(
+                            closes || kept_delta,
+                            "{e:?} on a sample that closes no step"
+                        );
+                        assert!(
+                            !(kept_delta && e == Error::NonFiniteResult),
+                            "{e:?} on a kept delta angle: it takes no step"
+                        );
                         match e {
                             Error::StepAngleBeyondStability { step_angle, limit } => {
                                 assert_eq!(limit, info.step_angle_limit);
