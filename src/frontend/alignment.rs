@@ -229,10 +229,7 @@ impl<T: Real> Alignment<T> {
                 }
             }
         }
-        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-        if !((det - 1.0).abs() <= tol) {
+        if !((super::det3(&m) - 1.0).abs() <= tol) {
             return Err(Error::NotARotation);
         }
         Ok(Alignment::Matrix(r))
@@ -244,10 +241,7 @@ impl<T: Real> Alignment<T> {
     pub fn apply(&self, s: GyroSample<T>) -> GyroSample<T> {
         let rate = match self {
             Alignment::Remap(r) => r.rotate(s.rate),
-            Alignment::Matrix(m) => {
-                let row = |r: &[T; 3]| r[0] * s.rate.x + r[1] * s.rate.y + r[2] * s.rate.z;
-                Vec3::new(row(&m[0]), row(&m[1]), row(&m[2]))
-            }
+            Alignment::Matrix(m) => super::mat_vec(m, s.rate),
         };
         GyroSample {
             rate,

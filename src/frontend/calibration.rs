@@ -90,10 +90,8 @@ impl<T: Real> Calibration<T> {
             d.y * self.sensitivity.y,
             d.z * self.sensitivity.z,
         );
-        let row = |r: &[T; 3]| r[0] * v.x + r[1] * v.y + r[2] * v.z;
-        let m = &self.misalignment;
         GyroSample {
-            rate: Vec3::new(row(&m[0]), row(&m[1]), row(&m[2])),
+            rate: super::mat_vec(&self.misalignment, v),
             saturated: s.saturated,
         }
     }
@@ -120,12 +118,7 @@ impl<T: Real> Calibration<T> {
 /// `‖A‖∞ ‖A⁻¹‖∞` (the largest absolute row sum of each), `None` when `A` is singular or the result is
 /// not finite.
 fn condition_number(a: &[[f64; 3]; 3]) -> Option<f64> {
-    let cof = |i: usize, j: usize| {
-        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
-        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
-        a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]
-    };
-    let det = a[0][0] * cof(0, 0) + a[0][1] * cof(0, 1) + a[0][2] * cof(0, 2);
+    let det = super::det3(a);
     if det == 0.0 || !det.is_finite() {
         return None;
     }
@@ -135,7 +128,7 @@ fn condition_number(a: &[[f64; 3]; 3]) -> Option<f64> {
             .map(|i| (0..3).map(|j| m(i, j).abs()).sum::<f64>())
             .fold(0.0, f64::max)
     };
-    let k = norm(&|i, j| a[i][j]) * norm(&|i, j| cof(j, i) / det);
+    let k = norm(&|i, j| a[i][j]) * norm(&|i, j| super::cofactor(a, j, i) / det);
     k.is_finite().then_some(k)
 }
 

@@ -48,3 +48,24 @@ pub use time::{FixedPeriod, TickClock};
 
 #[cfg(doc)]
 use crate::GyroSample;
+use crate::{Real, Vec3};
+
+/// `m v` for a matrix given by rows, each row as `m₀x + m₁y + m₂z` from the left (Fusion's order: the
+/// alignment and the calibration give its bits).
+#[inline(always)]
+fn mat_vec<T: Real>(m: &[[T; 3]; 3], v: Vec3<T>) -> Vec3<T> {
+    let row = |r: &[T; 3]| r[0] * v.x + r[1] * v.y + r[2] * v.z;
+    Vec3::new(row(&m[0]), row(&m[1]), row(&m[2]))
+}
+
+/// The cofactor of entry `(i, j)`, its sign carried by the cyclic order of the rows and columns.
+fn cofactor(a: &[[f64; 3]; 3], i: usize, j: usize) -> f64 {
+    let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+    let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+    a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]
+}
+
+/// `det a`, expanded along the first row.
+fn det3(a: &[[f64; 3]; 3]) -> f64 {
+    a[0][0] * cofactor(a, 0, 0) + a[0][1] * cofactor(a, 0, 1) + a[0][2] * cofactor(a, 0, 2)
+}
