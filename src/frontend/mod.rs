@@ -52,7 +52,7 @@ use crate::{Real, Vec3};
 
 /// `m v` for a matrix given by rows, each row as `m₀x + m₁y + m₂z` from the left (Fusion's order: the
 /// alignment and the calibration give its bits).
-#[inline(always)]
+#[inline]
 fn mat_vec<T: Real>(m: &[[T; 3]; 3], v: Vec3<T>) -> Vec3<T> {
     let row = |r: &[T; 3]| r[0] * v.x + r[1] * v.y + r[2] * v.z;
     Vec3::new(row(&m[0]), row(&m[1]), row(&m[2]))
