@@ -20,6 +20,9 @@ use core::fmt;
 pub enum Error {
     /// A rate sample (or rotation increment) has a NaN or infinite component.
     NonFiniteRate,
+    /// A reading given beside a rate (an acceleration or a temperature, [`crate::frontend::Aux`]) has a NaN
+    /// or infinite component.
+    NonFiniteAux,
     /// The step `dt` is NaN or infinite.
     NonFiniteStep,
     /// The step `dt` is zero or negative.
@@ -78,6 +81,9 @@ impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Error::NonFiniteRate => f.write_str("rate sample is NaN or infinite"),
+            Error::NonFiniteAux => {
+                f.write_str("acceleration or temperature given beside a rate is NaN or infinite")
+            }
             Error::NonFiniteStep => f.write_str("step dt is NaN or infinite"),
             Error::NonPositiveStep => f.write_str("step dt is zero or negative"),
             Error::StepAngleBeyondStability { step_angle, limit } => write!(
@@ -98,7 +104,7 @@ impl fmt::Display for Error {
             }
             Error::InvalidClock => f.write_str("clock counter width must be 1 to 32 bits"),
             Error::InvalidEstimator => f.write_str(
-                "bias estimator: window and memory must be positive, the gate finite and positive",
+                "bias estimator: window and memory must be 1 to 2^31-1, the gates, change and span positive",
             ),
             Error::InvalidCalibration => f.write_str(
                 "gyro calibration: a number is not finite, or M*diag(sensitivity) is singular or ill-conditioned",

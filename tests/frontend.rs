@@ -1,5 +1,5 @@
 //! The sensor front end and the burst paths: exact time, wraparound, refusals that leave the state as it
-//! was, bursts bit for bit equal to one sample at a time, and what the bias estimator learns and refuses.
+//! was, bursts bit for bit equal to one sample at a time (the bias estimator: tests/bias.rs).
 
 use quatprop::accumulate::Kahan;
 use quatprop::frontend::{BiasEstimator, CountScale, FixedPeriod, TickClock};
@@ -298,79 +298,6 @@ fn count_scales_that_are_not_finite_and_positive_are_refused() {
     assert!(CountScale::<f64>::full_scale_dps(1e-300).is_ok());
 }
 
-/// White noise by a small generator (sum of uniforms), deterministic.
-struct Noise(u64);
-impl Noise {
-    fn next(&mut self) -> f64 {
-        let mut acc = 0.0;
-        for _ in 0..12 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            acc += (self.0 >> 11) as f64 / (1u64 << 53) as f64;
-        }
-        acc - 6.0 // unit variance
-    }
-}
-
-#[test]
-fn bias_estimator_learns_still_bias_and_nothing_else() {
-    let gate = 0.05; // rad/s
-    let bias = Vec3::new(0.012, -0.007, 0.003);
-    let sigma = 0.002; // rad/s per sample
-    let mut noise = Noise(7);
-    let mut est = BiasEstimator::<f64>::new(1.0, 1.0e-3, gate).unwrap();
-    let sample = |extra: Vec3<f64>, noise: &mut Noise| {
-        GyroSample::new(bias + extra + Vec3::new(noise.next(), noise.next(), noise.next()) * sigma)
-    };
-    // Still for 20 s: the estimate's error is the noise averaged over the still time, σ/√N.
-    for _ in 0..20_000 {
-        est.update(sample(Vec3::ZERO, &mut noise)).unwrap();
-    }
-    let err = (est.bias() - bias).norm();
-    let expected = sigma * (3.0_f64 / 20_000.0).sqrt(); // rms of the 3-vector error
-    assert!(err < 4.0 * expected, "{err:e} vs {expected:e}");
-    // A real rotation faster than the gate (0.06 rad/s about x) for 10 s: never learned.
-    let learned = est.bias();
-    for _ in 0..10_000 {
-        est.update(sample(Vec3::new(0.06, 0.0, 0.0), &mut noise))
-            .unwrap();
-    }
-    assert_eq!(est.bias(), learned);
-    // Saturated samples, however still, are never learned from.
-    for _ in 0..5_000 {
-        let mut s = sample(Vec3::new(0.01, 0.0, 0.0), &mut noise);
-        s.saturated = true;
-        est.update(s).unwrap();
-    }
-    assert_eq!(est.bias(), learned);
-    // A NaN is refused and changes nothing.
-    let before = est;
-    assert_eq!(
-        est.update(GyroSample::new(Vec3::new(f64::NAN, 0.0, 0.0))),
-        Err(Error::NonFiniteRate)
-    );
-    assert_eq!(est, before);
-    // A rotation slower than the gate (0.04 rad/s) is indistinguishable from bias: it is learned.
-    for _ in 0..5_000 {
-        est.update(sample(Vec3::new(0.04, 0.0, 0.0), &mut noise))
-            .unwrap();
-    }
-    assert!(est.bias().x > learned.x + 0.002, "{:?}", est.bias());
-    assert_eq!(
-        BiasEstimator::<f32>::from_samples(0, 0.05, 64),
-        Err(Error::InvalidEstimator)
-    );
-    assert_eq!(
-        BiasEstimator::<f32>::from_samples(10, f32::NAN, 64),
-        Err(Error::InvalidEstimator)
-    );
-    assert_eq!(
-        BiasEstimator::<f32>::from_samples(10, -1.0, 64),
-        Err(Error::InvalidEstimator)
-    );
-}
-
 #[test]
 fn tick_clock_spreads_a_long_gaps_remainder_and_keeps_every_dt_positive() {
     // f32 at 1 MHz: a gap of 2^31 − 1 ticks (35.8 min, the longest a 32-bit counter allows) leaves a
@@ -465,30 +392,4 @@ fn front_end_constructors_refuse_bad_values_with_typed_errors() {
         TickClock::<f32>::new(f64::INFINITY, 32),
         Err(Error::NonFiniteStep)
     );
-}
-
-/// The window is a duration: the same second at 1 kHz and at 400 Hz; a window beyond 2³¹ − 1 samples (which
-/// learned the bias with the wrong sign) is refused.
-#[test]
-fn bias_window_is_given_in_seconds() {
-    let at_1k = BiasEstimator::<f32>::new(1.0, 1.0e-3, 0.05).unwrap();
-    assert_eq!(at_1k, BiasEstimator::from_samples(1000, 0.05, 64).unwrap());
-    let at_400 = BiasEstimator::<f32>::with_memory(1.0, 2.5e-3, 0.05, 8).unwrap();
-    assert_eq!(at_400, BiasEstimator::from_samples(400, 0.05, 8).unwrap());
-    // Learned after 400 still samples at 400 Hz, not before.
-    let mut e = at_400;
-    let b = Vec3::new(0.01_f32, -0.02, 0.005);
-    for _ in 0..399 {
-        e.update(GyroSample::new(b)).unwrap();
-    }
-    assert!(!e.is_learned());
-    e.update(GyroSample::new(b)).unwrap();
-    assert!(e.is_learned());
-    let bad = Err(Error::InvalidEstimator);
-    assert_eq!(BiasEstimator::<f32>::new(0.0, 1.0e-3, 0.05), bad);
-    assert_eq!(BiasEstimator::<f32>::new(1.0, f64::NAN, 0.05), bad);
-    assert_eq!(BiasEstimator::<f32>::new(1.0e-4, 1.0e-3, 0.05), bad); // under one sample
-    assert_eq!(BiasEstimator::<f32>::new(3.0e6, 1.0e-3, 0.05), bad); // 3e9 samples
-    assert_eq!(BiasEstimator::<f32>::from_samples(1 << 31, 0.05, 64), bad);
-    assert!(BiasEstimator::<f32>::from_samples(i32::MAX as u32, 0.05, 64).is_ok());
 }

@@ -15,18 +15,19 @@
 /**
  * Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
  * 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
+ * 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
  */
-#define QUATPROP_ABI_VERSION 2
+#define QUATPROP_ABI_VERSION 3
 
 /**
  * `uint64_t` words in `quatprop_t`.
  */
-#define QUATPROP_STATE_WORDS 48
+#define QUATPROP_STATE_WORDS 64
 
 /**
  * Size of `quatprop_t` in bytes (same on every target).
  */
-#define QUATPROP_STATE_SIZE 384
+#define QUATPROP_STATE_SIZE 512
 
 /**
  * Alignment of `quatprop_t` in bytes.

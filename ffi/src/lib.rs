@@ -36,11 +36,12 @@ use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 
 /// Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
 /// 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
-pub const QUATPROP_ABI_VERSION: u32 = 2;
+/// 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
+pub const QUATPROP_ABI_VERSION: u32 = 3;
 /// `uint64_t` words in `quatprop_t`.
-pub const QUATPROP_STATE_WORDS: usize = 48;
+pub const QUATPROP_STATE_WORDS: usize = 64;
 /// Size of `quatprop_t` in bytes (same on every target).
-pub const QUATPROP_STATE_SIZE: usize = 384;
+pub const QUATPROP_STATE_SIZE: usize = 512;
 /// Alignment of `quatprop_t` in bytes.
 pub const QUATPROP_STATE_ALIGN: usize = 8;
 
@@ -53,8 +54,9 @@ pub struct quatprop_t {
     pub _opaque: [u64; QUATPROP_STATE_WORDS],
 }
 
-/// "QPF2": the tag `quatprop_init` writes (version 2: the state is stored encoded and checksummed).
-const MAGIC: u32 = 0x5150_4632;
+/// "QPF3": the tag `quatprop_init` writes (version 3: the state is stored encoded and checksummed, in
+/// 512 bytes; a version-2 block is refused as corrupted).
+const MAGIC: u32 = 0x5150_4633;
 
 /// The block's layout: the tag (word 0), the encoded length in bytes (word 1), the checksum (word 2),
 /// then the state encoded with postcard (`state::Inner`) and zeros to the end of the block.
@@ -468,8 +470,8 @@ unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], quatprop_status
 /// `s`, if non-null and aligned, must point to a readable `quatprop_t`.
 unsafe fn block<'a>(s: *const quatprop_t) -> Result<&'a Block, quatprop_status_t> {
     check(s)?;
-    // SAFETY: non-null and aligned (checked); a `quatprop_t` is 384 readable bytes per the caller's
-    // contract, and any bytes are a valid `[u8; 384]`.
+    // SAFETY: non-null and aligned (checked); a `quatprop_t` is 512 readable bytes per the caller's
+    // contract, and any bytes are a valid `[u8; 512]`.
     Ok(unsafe { &*s.cast::<Block>() })
 }
 

@@ -2,7 +2,8 @@
 //! decoded. (The header test is the crate `header/`.)
 
 use super::*;
-use quatprop::frontend::{Alignment, BiasEstimator, CountScale, FixedPeriod, TickClock};
+use quatprop::Vec3;
+use quatprop::frontend::{Alignment, Aux, BiasEstimator, CountScale, FixedPeriod, TickClock};
 
 /// The largest state: delta angles with the five-sample correction, the float-float accumulator, and every
 /// front-end part (count scale, a matrix alignment, the bias estimator, period and clock), after samples.
@@ -20,8 +21,20 @@ fn largest() -> state::Inner {
     let r = [[0.0, 0.6, 0.8], [-1.0, 0.0, 0.0], [0.0, -0.8, 0.6]];
     inner.front.scale = Some(CountScale::full_scale_dps(2000.0).unwrap());
     inner.front.alignment = Some(Alignment::from_matrix(r).unwrap());
-    inner.front.bias =
-        Bias::Estimator(BiasEstimator::from_samples(u32::MAX / 2, 0.05, u32::MAX).unwrap());
+    // The estimator with every option and every optional part of its state present: a candidate change,
+    // the temperature line, the window's acceleration reference.
+    let mut est = BiasEstimator::from_samples(2, 0.05, i32::MAX as u32)
+        .and_then(|e| e.with_accel_gate(0.5))
+        .and_then(|e| e.with_temperature_model(1.0))
+        .unwrap();
+    for (k, b) in [0.0, 0.0, 0.001, 0.001, 0.01, 0.01, 0.02].into_iter().enumerate() {
+        let aux = Aux {
+            accel: Some(Vec3::new(0.1, 0.2, 9.8)),
+            temperature: Some(25.0 + 3.0 * k as f32),
+        };
+        est.update_with(GyroSample::new(Vec3::new(b, -b, b)), aux).unwrap();
+    }
+    inner.front.bias = Bias::Estimator(est);
     inner.front.period = Some(FixedPeriod::new(1.0e-3).unwrap());
     inner.front.clock = Some(TickClock::new(1.0e6, 32).unwrap());
     inner
@@ -32,9 +45,9 @@ fn the_largest_state_fits_its_block_with_room() {
     let inner = largest();
     let mut buf = [0u8; 1024];
     let len = postcard::to_slice(&inner, &mut buf).unwrap().len();
-    // Integers are varints: the counters (three u64, 1 → 10 bytes) and up to ten u32 fields (pending, the
+    // Integers are varints: the counters (three u64, 1 → 10 bytes) and up to eleven u32 fields (pending, the
     // estimator's and the clock's counts, 1 → 5 bytes) can grow.
-    let worst = len + 3 * 9 + 10 * 4;
+    let worst = len + 3 * 9 + 11 * 4;
     println!("encoded state: {len} bytes, at most {worst} of {PAYLOAD}");
     assert!(worst <= PAYLOAD, "{worst} > {PAYLOAD}");
 }

@@ -41,7 +41,7 @@ mod scale;
 mod time;
 
 pub use alignment::{Alignment, AxisRemap, ROTATION_TOLERANCE};
-pub use bias::{BiasEstimator, FixedBias};
+pub use bias::{Aux, BiasEstimator, FixedBias};
 pub use calibration::Calibration;
 pub use scale::CountScale;
 pub use time::{FixedPeriod, TickClock};

@@ -14,8 +14,13 @@
 //! - `FixedBias`: refused iff non-finite; `apply` subtracts bit for bit.
 //! - `BiasEstimator`: any window, gate and memory (refused as documented), optional initial bias, then
 //!   arbitrary samples with NaN and saturated ones: `Err` ⇒ unchanged; `Ok` ⇒ output = sample − bias
-//!   before it; the estimate follows an independent implementation of the documented rule (stillness
-//!   windows, running mean over `memory` windows) bit for bit, and a saturated sample never changes it.
+//!   before it, and a saturated sample never changes the estimate. With changes switched off
+//!   (`with_change(MAX)`) the estimate follows an independent implementation of the documented rule
+//!   (stillness windows, running mean over `memory` windows) bit for bit. With changes on, and optionally an
+//!   acceleration gate and the temperature model fed arbitrary accelerations and temperatures (NaN and
+//!   infinities among them): a NaN or infinite one is refused as `NonFiniteAux` with the estimator
+//!   unchanged; otherwise the output is the sample minus `bias_at(temperature)` from before, bit for bit,
+//!   and the estimate stays finite.
 //! - `FixedPeriod`: construction errors as documented; with refusals given back by `carry_over`, the
 //!   accepted `dt`s sum to `k·period` (k samples) within ½ ulp of the last `dt`, plus one ulp of each `dt`
 //!   handed out with a carried interval, plus `4ε²·period` per sample (rounding of the carry and of `lo`)
@@ -31,7 +36,7 @@
 
 use super::{assert_same_text, norm64, vec_bits, Bytes, Fz, RATE, SPECIAL, UNIT};
 use quatprop::frontend::{
-    Alignment, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
     ROTATION_TOLERANCE,
 };
 use quatprop::{Error, GyroSample, Quat, Vec3};
@@ -308,7 +313,8 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
     };
     let memory = if default_memory { 64 } else { memory };
     let valid = window > 0 && memory > 0 && gate > T::ZERO && gate.is_finite();
-    let mut est = match r {
+    let follow = b.bool();
+    let mut est = match r.and_then(|e| if follow { Ok(e) } else { e.with_change(T::MAX) }) {
         Ok(e) => {
             assert!(valid);
             e
@@ -344,6 +350,10 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
         }
     }
     assert_eq!(vec_bits(est.bias()), vec_bits(m.bias));
+    if follow {
+        following(b, est);
+        return;
+    }
     for _ in 0..256 {
         if b.is_empty() {
             break;
@@ -398,6 +408,77 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
         }
         assert_eq!(vec_bits(est.bias()), vec_bits(m.bias), "{m:?}");
         assert_eq!(est.is_learned(), m.learned > 0);
+    }
+}
+
+/// The estimator with changes followed, optionally an acceleration gate and the temperature model, fed
+/// arbitrary samples, accelerations and temperatures: the invariants that hold whatever it learns.
+fn following<T: Fz>(b: &mut Bytes<'_>, mut est: BiasEstimator<T>) {
+    if b.bool() {
+        let gate: T = b.real(UNIT);
+        let r = est.with_accel_gate(gate);
+        match r {
+            Ok(e) => est = e,
+            Err(e) => {
+                assert_eq!(e, Error::InvalidEstimator);
+                assert!(!(gate > T::ZERO && gate.is_finite()));
+            }
+        }
+    }
+    if b.bool() {
+        let span: T = b.real(UNIT);
+        match est.with_temperature_model(span) {
+            Ok(e) => est = e,
+            Err(e) => {
+                assert_eq!(e, Error::InvalidEstimator);
+                assert!(!(span > T::ZERO && span.is_finite()));
+            }
+        }
+    }
+    for _ in 0..256 {
+        if b.is_empty() {
+            break;
+        }
+        let s = GyroSample {
+            rate: b.vec::<T>([1e-3, 1e-2, 0.05, 1.0]),
+            saturated: b.u8() < 32,
+        };
+        let accel = b.bool().then(|| b.vec::<T>([0.1, 1.0, 9.81, 100.0]));
+        let temperature = b
+            .bool()
+            .then(|| T::from_f64(25.0) + b.real::<T>([0.1, 1.0, 10.0, 100.0]));
+        let aux = Aux { accel, temperature };
+        let before = est;
+        let r = est.update_with(s, aux);
+        if !s.rate.is_finite() {
+            assert_eq!(r, Err(Error::NonFiniteRate));
+            assert_same_text(&est, &before, &"refused sample changed the estimator");
+            continue;
+        }
+        let aux_finite =
+            accel.map_or(true, |a| a.is_finite()) && temperature.map_or(true, |t| t.is_finite());
+        let used = temperature.map_or(before.bias(), |t| before.bias_at(t));
+        if !aux_finite || !used.is_finite() {
+            assert_eq!(r, Err(Error::NonFiniteAux));
+            assert_same_text(&est, &before, &"refused aux changed the estimator");
+            continue;
+        }
+        let out = r.expect("a finite sample is taken");
+        let d = Vec3::new(s.rate.x - used.x, s.rate.y - used.y, s.rate.z - used.z);
+        assert_eq!(vec_bits(out.rate), vec_bits(d));
+        assert_eq!(out.saturated, s.saturated);
+        if s.saturated {
+            assert_eq!(
+                vec_bits(est.bias()),
+                vec_bits(before.bias()),
+                "learned from a saturated sample"
+            );
+        }
+        assert!(est.bias().is_finite(), "{est:?}");
+        assert!(
+            est.is_learned() || !before.is_learned(),
+            "forgot what it learned"
+        );
     }
 }
 
