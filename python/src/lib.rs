@@ -18,7 +18,7 @@ use pyo3::prelude::*;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, AxisRemap, BiasEstimator, Calibration, FixedBias, FixedPeriod, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, FixedBias, FixedPeriod, TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
@@ -205,6 +205,22 @@ impl<T: Real> Visit<T> for Run<'_, '_, T> {
     }
 }
 
+/// What the IMU gave beside the rates, per row (validated finite by `update`): accelerations and
+/// temperatures for the bias estimator; empty slices when not given.
+struct Companions<'a, T> {
+    accel: &'a [[T; 3]],
+    temperature: &'a [T],
+}
+
+impl<T: Real> Companions<'_, T> {
+    fn at(&self, k: usize) -> Aux<T> {
+        Aux {
+            accel: self.accel.get(k).map(|a| Vec3::new(a[0], a[1], a[2])),
+            temperature: self.temperature.get(k).copied(),
+        }
+    }
+}
+
 /// Everything a stream keeps between calls: the configured propagator, its clock, the front end
 /// (the gyro's calibration, the alignment to body axes, then a fixed bias or the bias estimator) and the
 /// count of refused samples.
@@ -276,13 +292,23 @@ impl<T: Real> Session<T> {
         let (fixed, estimator) = match (args.bias, args.estimator) {
             (None, None) => (None, None),
             (Some(b), None) => (Some(FixedBias::new(vec3(b)).map_err(config_error)?), None),
-            (None, Some((window, gate, memory, initial))) => {
-                let e = BiasEstimator::from_samples(window, T::from_f64(gate), memory)
+            (None, Some((window, gate, memory, initial, change, accel_gate, span))) => {
+                let mut e = BiasEstimator::from_samples(window, T::from_f64(gate), memory)
                     .map_err(config_error)?;
-                let e = match initial {
-                    Some(b) => e.with_initial(vec3(b)).map_err(config_error)?,
-                    None => e,
-                };
+                if let Some(c) = change {
+                    e = e.with_change(T::from_f64(c)).map_err(config_error)?;
+                }
+                if let Some(g) = accel_gate {
+                    e = e.with_accel_gate(T::from_f64(g)).map_err(config_error)?;
+                }
+                if let Some(s) = span {
+                    e = e
+                        .with_temperature_model(T::from_f64(s))
+                        .map_err(config_error)?;
+                }
+                if let Some(b) = initial {
+                    e = e.with_initial(vec3(b)).map_err(config_error)?;
+                }
                 (None, Some(e))
             }
             _ => {
@@ -314,9 +340,10 @@ impl<T: Real> Session<T> {
     /// The front end over `rows`: the gyro's calibration (sensor axes), the alignment (sensor to body
     /// axes), then the bias (body axes), as the README's quick start composes them per sample. A sample the bias estimator refuses (NaN) is
     /// passed on unchanged, so the propagator refuses it too.
-    fn front_end(&mut self, rows: &[[T; 3]]) -> Vec<[T; 3]> {
+    fn front_end(&mut self, rows: &[[T; 3]], aux: &Companions<'_, T>) -> Vec<[T; 3]> {
         rows.iter()
-            .map(|r| {
+            .enumerate()
+            .map(|(k, r)| {
                 let mut s = GyroSample::<T>::from_row(*r);
                 if let Some(c) = &self.calibration {
                     s = c.apply(s);
@@ -328,7 +355,7 @@ impl<T: Real> Session<T> {
                     s = b.apply(s);
                 }
                 if let Some(e) = self.estimator.as_mut() {
-                    s = e.update(s).unwrap_or(s);
+                    s = e.update_with(s, aux.at(k)).unwrap_or(s);
                 }
                 [s.rate.x, s.rate.y, s.rate.z]
             })
@@ -343,6 +370,7 @@ impl<T: Real> Session<T> {
     fn update(
         &mut self,
         rows: &[[T; 3]],
+        aux: &Companions<'_, T>,
         seconds: &[f64],
         ticks: &[u32],
         out: &mut [[T; 4]],
@@ -351,7 +379,7 @@ impl<T: Real> Session<T> {
         let estimator = self.estimator;
         let processed;
         let input = if self.has_front_end() {
-            processed = self.front_end(rows);
+            processed = self.front_end(rows, aux);
             &processed[..]
         } else {
             rows
@@ -392,7 +420,7 @@ impl<T: Real> Session<T> {
                 // The estimator has seen the whole call: back to where the refused sample left it.
                 if estimator.is_some() {
                     self.estimator = estimator;
-                    self.front_end(&rows[..=r.index]);
+                    self.front_end(&rows[..=r.index], aux);
                 }
             }
         }
@@ -416,9 +444,21 @@ struct StreamArgs {
     remap: Option<String>,
     matrix: Option<[[f64; 3]; 3]>,
     bias: Option<[f64; 3]>,
-    estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
+    estimator: Option<EstimatorArgs>,
     calibration: Option<CalibrationArgs>,
 }
+
+/// A bias estimator as Python passes it: window (samples), gate (rad/s), memory (windows), initial bias
+/// (rad/s), change threshold (rad/s; None: the core's default), acceleration gate, temperature span.
+type EstimatorArgs = (
+    u32,
+    f64,
+    u32,
+    Option<[f64; 3]>,
+    Option<f64>,
+    Option<f64>,
+    Option<f64>,
+);
 
 /// A calibration as Python passes it: offset (rad/s), sensitivity, misalignment (rows).
 type CalibrationArgs = ([f64; 3], [f64; 3], [[f64; 3]; 3]);
@@ -460,19 +500,67 @@ type Updated<'py, T> = (
     RefusedInfo,
 );
 
+/// One call's arrays as Python passes them: rates, timestamps (seconds or ticks), accelerations and
+/// temperatures.
+struct Arrays<'py, T: numpy::Element> {
+    gyr: PyReadonlyArray2<'py, T>,
+    t: Option<PyReadonlyArray1<'py, f64>>,
+    ticks: Option<PyReadonlyArray1<'py, u32>>,
+    acc: Option<PyReadonlyArray2<'py, T>>,
+    temperature: Option<PyReadonlyArray1<'py, T>>,
+}
+
 fn update<'py, T: Real + numpy::Element>(
     py: Python<'py>,
     session: &mut Session<T>,
     mask: bool,
-    gyr: PyReadonlyArray2<'py, T>,
-    t: Option<PyReadonlyArray1<'py, f64>>,
-    ticks: Option<PyReadonlyArray1<'py, u32>>,
+    arrays: Arrays<'py, T>,
 ) -> PyResult<Updated<'py, T>> {
+    let Arrays {
+        gyr,
+        t,
+        ticks,
+        acc,
+        temperature,
+    } = arrays;
     let (rows, rest) = gyr.as_slice()?.as_chunks::<3>();
     if !rest.is_empty() {
         return Err(PyValueError::new_err("gyr must have shape (N, 3)"));
     }
     let n = rows.len();
+    let accel = match &acc {
+        Some(a) => {
+            let (r, rest) = a.as_slice()?.as_chunks::<3>();
+            if !rest.is_empty() || r.len() != n {
+                return Err(PyValueError::new_err(
+                    "acc must have shape (N, 3), N as gyr",
+                ));
+            }
+            r
+        }
+        None => &[],
+    };
+    let temps = match &temperature {
+        Some(a) => a.as_slice()?,
+        None => &[],
+    };
+    if temperature.is_some() && temps.len() != n {
+        return Err(PyValueError::new_err(
+            "temperature must have shape (N,), N as gyr",
+        ));
+    }
+    if (acc.is_some() || temperature.is_some()) && session.estimator.is_none() {
+        return Err(PyValueError::new_err(
+            "acc and temperature feed the bias estimator: make the stream with bias=BiasEstimator(...)",
+        ));
+    }
+    if !(accel.iter().flatten().all(|e| e.is_finite()) && temps.iter().all(|e| e.is_finite())) {
+        return Err(config_error(Error::NonFiniteAux));
+    }
+    let aux = Companions {
+        accel,
+        temperature: temps,
+    };
     let seconds = match &t {
         Some(a) => a.as_slice()?,
         None => &[],
@@ -495,7 +583,7 @@ fn update<'py, T: Real + numpy::Element>(
         let mut out = vec![[T::ZERO; 4]; n];
         let mut flags = if mask { vec![false; n] } else { Vec::new() };
         let m = if mask { Some(&mut flags[..]) } else { None };
-        let result = session.update(rows, seconds, tick_slice, &mut out, m);
+        let result = session.update(rows, &aux, seconds, tick_slice, &mut out, m);
         (out, flags, result)
     });
     let refused = result
@@ -538,7 +626,7 @@ impl NativeStream {
         remap: Option<String>,
         matrix: Option<[[f64; 3]; 3]>,
         bias: Option<[f64; 3]>,
-        estimator: Option<(u32, f64, u32, Option<[f64; 3]>)>,
+        estimator: Option<EstimatorArgs>,
         calibration: Option<CalibrationArgs>,
     ) -> PyResult<Self> {
         let args = StreamArgs {
@@ -576,31 +664,55 @@ impl NativeStream {
     }
 
     /// Rows of f32 samples into an f32 stream.
-    #[pyo3(signature = (gyr, t=None, ticks=None))]
+    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None))]
+    #[allow(clippy::too_many_arguments)]
     fn update_f32<'py>(
         &mut self,
         py: Python<'py>,
         gyr: PyReadonlyArray2<'py, f32>,
         t: Option<PyReadonlyArray1<'py, f64>>,
         ticks: Option<PyReadonlyArray1<'py, u32>>,
+        acc: Option<PyReadonlyArray2<'py, f32>>,
+        temperature: Option<PyReadonlyArray1<'py, f32>>,
     ) -> PyResult<Updated<'py, f32>> {
         match &mut self.now {
-            Sessions::F32(s) => update(py, s, self.mask, gyr, t, ticks),
+            Sessions::F32(s) => {
+                let arrays = Arrays {
+                    gyr,
+                    t,
+                    ticks,
+                    acc,
+                    temperature,
+                };
+                update(py, s, self.mask, arrays)
+            }
             Sessions::F64(_) => Err(PyValueError::new_err("an f64 stream takes f64 samples")),
         }
     }
 
     /// Rows of f64 samples into an f64 stream.
-    #[pyo3(signature = (gyr, t=None, ticks=None))]
+    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None))]
+    #[allow(clippy::too_many_arguments)]
     fn update_f64<'py>(
         &mut self,
         py: Python<'py>,
         gyr: PyReadonlyArray2<'py, f64>,
         t: Option<PyReadonlyArray1<'py, f64>>,
         ticks: Option<PyReadonlyArray1<'py, u32>>,
+        acc: Option<PyReadonlyArray2<'py, f64>>,
+        temperature: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<Updated<'py, f64>> {
         match &mut self.now {
-            Sessions::F64(s) => update(py, s, self.mask, gyr, t, ticks),
+            Sessions::F64(s) => {
+                let arrays = Arrays {
+                    gyr,
+                    t,
+                    ticks,
+                    acc,
+                    temperature,
+                };
+                update(py, s, self.mask, arrays)
+            }
             Sessions::F32(_) => Err(PyValueError::new_err("an f32 stream takes f32 samples")),
         }
     }

@@ -111,10 +111,10 @@ pub struct BiasEstimator<T> {
     window: u32,
     gate: T,
     memory: u32,
-    /// The smallest disagreement (rad/s, any axis) that can start a change; `T::MAX`: never.
+    /// The smallest disagreement (rad/s, any axis) that can start a change; infinity: never.
     change: T,
-    /// Acceleration gate (per axis, the unit of the accelerations given); `T::MAX`: not used.
-    accel_gate: T,
+    /// Acceleration gate (per axis, the unit of the accelerations given), if used.
+    accel_gate: Option<T>,
     /// The running mean of the learned windows' bias measurements.
     bias: Vec3<T>,
     /// The running mean of their temperatures, with the same weights: where `bias` holds.
@@ -266,7 +266,7 @@ impl<T: Real> BiasEstimator<T> {
             gate,
             memory,
             change: T::from_f64(Self::DEFAULT_CHANGE),
-            accel_gate: T::MAX,
+            accel_gate: None,
             bias: Vec3::ZERO,
             bias_temperature: None,
             sum: Vec3::ZERO,
@@ -282,13 +282,13 @@ impl<T: Real> BiasEstimator<T> {
     }
 
     /// Sets the smallest disagreement (rad/s, on any axis) between a still window and the estimate that can
-    /// start a change (it must also exceed five standard errors). `T::MAX` never starts one: the estimate
+    /// start a change (it must also exceed five standard errors). Infinity never starts one: the estimate
     /// is then only the running mean, which takes about `memory` windows to follow a step.
     ///
     /// # Errors
     /// [`Error::InvalidEstimator`] if `change` is not positive (NaN included).
     pub fn with_change(mut self, change: T) -> Result<Self, Error> {
-        if !(change > T::ZERO && change <= T::MAX) {
+        if !(change > T::ZERO) {
             return Err(Error::InvalidEstimator);
         }
         self.change = change;
@@ -302,10 +302,10 @@ impl<T: Real> BiasEstimator<T> {
     /// # Errors
     /// [`Error::InvalidEstimator`] if `gate` is not finite and positive.
     pub fn with_accel_gate(mut self, gate: T) -> Result<Self, Error> {
-        if !(gate > T::ZERO && gate < T::MAX) {
+        if !(gate > T::ZERO && gate <= T::MAX) {
             return Err(Error::InvalidEstimator);
         }
-        self.accel_gate = gate;
+        self.accel_gate = Some(gate);
         Ok(self)
     }
 
@@ -316,7 +316,7 @@ impl<T: Real> BiasEstimator<T> {
     /// # Errors
     /// [`Error::InvalidEstimator`] if `span` is not finite and positive.
     pub fn with_temperature_model(mut self, span: T) -> Result<Self, Error> {
-        if !(span > T::ZERO && span < T::MAX) {
+        if !(span > T::ZERO && span <= T::MAX) {
             return Err(Error::InvalidEstimator);
         }
         self.thermal = Some(Thermal {
@@ -418,11 +418,10 @@ impl<T: Real> BiasEstimator<T> {
         };
         let g = self.gate;
         let mut still = !s.saturated && d.x.abs() <= g && d.y.abs() <= g && d.z.abs() <= g;
-        if let (true, Some(a)) = (self.accel_gate < T::MAX, aux.accel) {
+        if let (Some(ga), Some(a)) = (self.accel_gate, aux.accel) {
             match self.accel_reference {
                 Some(r) if self.count > 0 => {
                     let e = a - r;
-                    let ga = self.accel_gate;
                     still &= e.x.abs() <= ga && e.y.abs() <= ga && e.z.abs() <= ga;
                 }
                 _ => self.accel_reference = Some(a),

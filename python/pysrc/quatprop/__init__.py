@@ -81,19 +81,58 @@ class RefusedSample(ValueError):
 
 @dataclass(frozen=True)
 class BiasEstimator:
-    """Learns the gyro bias while the body is still (the core's ``frontend::BiasEstimator``).
+    """Learns the gyro bias while the body is still and follows it when it changes (the core's
+    ``frontend::BiasEstimator``).
 
     Samples are taken in windows of ``window`` samples; a window in which every axis (minus the current
-    estimate) stays within ``gate`` rad/s is *still*, and its mean refines the estimate (running mean over
-    the last ``memory`` still windows). ``initial`` (rad/s) starts from a known bias. A rotation slower
-    than ``gate`` on every axis held for a whole window is learned as bias: a gyroscope alone cannot tell
-    them apart.
+    estimate) stays within ``gate`` rad/s is *still* (with ``accel_gate``, also every acceleration within
+    that gate of the window's first, per axis). The first still window sets the estimate; one that agrees
+    with it refines it (running mean over the last ``memory`` still windows). One that disagrees by more
+    than ``change`` rad/s (default 5e-4, the core's ``DEFAULT_CHANGE``) and five standard errors is a
+    candidate; if the next still window agrees with the candidate the estimate restarts from the two: a
+    bias step at rest is followed within three windows. ``change=float("inf")`` never restarts.
+    ``temperature_span`` (the temperatures' unit) fits bias(T), a line per axis, through the still windows
+    and applies it once their temperatures have that standard deviation. ``initial`` (rad/s) starts from a
+    known bias.
+
+    A rotation slower than ``gate`` on every axis held for two windows is learned as bias: a gyroscope
+    alone cannot tell them apart (an accelerometer tells a hand-held rotation, not a turn about the
+    vertical).
+
+    Attributes:
+        window: samples per window (1 to 2**31-1), e.g. ``round(1.0 / dt)`` for one second.
+        gate: stillness gate (rad/s), e.g. 3 °/s = 0.0524 rad/s.
+        memory: still windows in the running mean (1 to 2**31-1).
+        initial: a known bias to start from (rad/s, body axes), counted as one window.
+        change: the smallest disagreement (rad/s) that can start a change; None for the default.
+        accel_gate: acceleration gate per axis, in the unit of the ``acc`` given to :meth:`Stream.update`
+            (e.g. 0.5 m/s²); None: rest judged by the rates alone.
+        temperature_span: the temperature spread (standard deviation, the unit of ``temperature``) from
+            which the bias(T) line is applied; None: no temperature model.
     """
 
     window: int
     gate: float
     memory: int = 64
     initial: Optional[Sequence[float]] = None
+    change: Optional[float] = None
+    accel_gate: Optional[float] = None
+    temperature_span: Optional[float] = None
+
+    def _native(self):
+        initial = None
+        if self.initial is not None:
+            ia = np.asarray(self.initial, dtype=np.float64)
+            if ia.shape != (3,):
+                raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
+            initial = [float(c) for c in ia]
+        for name, v in (("window", self.window), ("memory", self.memory)):
+            if not isinstance(v, (int, np.integer)) or not 1 <= v <= 2**31 - 1:
+                raise ValueError(f"BiasEstimator.{name} must be an integer in 1 .. 2**31-1, got {v!r}")
+        def opt(v):
+            return None if v is None else float(v)
+        return (int(self.window), float(self.gate), int(self.memory), initial, opt(self.change),
+                opt(self.accel_gate), opt(self.temperature_span))
 
 
 _DTYPES = {"f32": np.float32, "f64": np.float64}
@@ -301,16 +340,7 @@ class Stream:
             if input == "delta_angles":
                 raise ValueError("bias (rad/s) does not apply to delta angles")
             if isinstance(bias, BiasEstimator):
-                initial = None
-                if bias.initial is not None:
-                    ia = np.asarray(bias.initial, dtype=np.float64)
-                    if ia.shape != (3,):
-                        raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
-                    initial = [float(c) for c in ia]
-                for name, v in (("window", bias.window), ("memory", bias.memory)):
-                    if not isinstance(v, (int, np.integer)) or not 1 <= v <= 2**32 - 1:
-                        raise ValueError(f"BiasEstimator.{name} must be an integer >= 1, got {v!r}")
-                estimator = (int(bias.window), float(bias.gate), int(bias.memory), initial)
+                estimator = bias._native()
             else:
                 ba = np.asarray(bias, dtype=np.float64)
                 if ba.shape != (3,):
@@ -354,7 +384,7 @@ class Stream:
                 self._native = _native.NativeStream(precision, *self._args)
             self._precision = precision
 
-    def update(self, gyr, t=None, *, ticks=None):
+    def update(self, gyr, t=None, *, ticks=None, acc=None, temperature=None):
         """Integrates the next samples; row ``k`` of the result is the attitude after sample ``k``.
 
         Args:
@@ -362,6 +392,10 @@ class Stream:
                 rounded once to the stream's precision.
             t: (N,) timestamps (s, float64) for a stream made with ``timestamps=True``.
             ticks: (N,) counter values for a stream made with ``tick_hz``.
+            acc: (N, 3) accelerations at the samples (any fixed axes; the unit of the estimator's
+                ``accel_gate``), for the bias estimator's rest detection. They never touch the attitude.
+            temperature: (N,) the sensor's temperature at the samples (the unit of the estimator's
+                ``temperature_span``), for its bias(T) model.
 
         Returns:
             q: (N, 4) attitudes ``[w, x, y, z]``; or ``(q, refused)`` with ``on_refused="mask"``.
@@ -369,7 +403,9 @@ class Stream:
         Raises:
             RefusedSample: a sample was refused (``on_refused="raise"``); its index is in this call's
                 ``gyr``.
-            ValueError: a bad shape, or timestamps that do not match the stream's time base.
+            ValueError: a bad shape, timestamps that do not match the stream's time base, ``acc`` or
+                ``temperature`` without a bias estimator, or NaN or infinite in them (``NonFiniteAux``:
+                nothing of the call is taken).
         """
         if self._precision is None:
             self._decide("f32" if np.asarray(gyr).dtype == np.float32 else "f64")
@@ -394,8 +430,11 @@ class Stream:
             if a.size and (a.min() < 0 or a.max() > 2**32 - 1):
                 raise ValueError("ticks must be in 0 .. 2**32-1 (counter values)")
             tick_arr = np.ascontiguousarray(a, dtype=np.uint32)
+        dtype = _DTYPES[self._precision]
+        acc_arr = None if acc is None else _array("acc", acc, dtype, 2, 3)
+        temp_arr = None if temperature is None else _array("temperature", temperature, dtype, 1)
         native = self._native.update_f32 if self._precision == "f32" else self._native.update_f64
-        q, mask, refused = native(gyr, t_arr, tick_arr)
+        q, mask, refused = native(gyr, t_arr, tick_arr, acc_arr, temp_arr)
         if refused is not None:
             raise RefusedSample(*refused)
         if self._mask:
@@ -472,6 +511,8 @@ def integrate(
     bias=None,
     calibration: Optional[Calibration] = None,
     on_refused: str = "raise",
+    acc=None,
+    temperature=None,
 ):
     """Integrates body-frame gyro samples into attitude quaternions, bit for bit as the Rust library.
 
@@ -495,6 +536,8 @@ def integrate(
         ticks: (N,) integer timestamps of the sensor's clock (``tick_hz`` ticks per second, a counter of
             ``tick_bits`` bits that wraps): the core's ``TickClock``, as ``Propagator::push_burst_timed``.
             Give exactly one of ``dt``, ``t``, ``ticks``.
+        acc: (N, 3) accelerations for the bias estimator's rest detection (see :meth:`Stream.update`).
+        temperature: (N,) temperatures for the bias estimator's bias(T) model (see :meth:`Stream.update`).
 {options}
     Returns:
         q: (N, 4) attitudes ``[w, x, y, z]`` (scalar first, Hamilton, body to reference), dtype of
@@ -529,7 +572,7 @@ def integrate(
         calibration=calibration,
         on_refused=on_refused,
     )
-    return stream.update(gyr, t, ticks=ticks)
+    return stream.update(gyr, t, ticks=ticks, acc=acc, temperature=temperature)
 
 
 if integrate.__doc__:  # None under python -OO

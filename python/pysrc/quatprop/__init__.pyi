@@ -33,15 +33,27 @@ class RefusedSample(ValueError):
     def __init__(self, index: int, kind: str, reason: str) -> None: ...
 
 class BiasEstimator:
-    """Learns the gyro bias (rad/s) over still windows of `window` samples, every axis within `gate` rad/s;
-    a running mean over the last `memory` still windows; `initial` starts from a known bias."""
+    """Learns the gyro bias (rad/s) over still windows of `window` samples, every axis within `gate` rad/s
+    (and every acceleration within `accel_gate` of the window's first); a running mean over the last
+    `memory` still windows; a change beyond `change` rad/s confirmed by two windows restarts it;
+    `temperature_span` fits bias(T); `initial` starts from a known bias."""
 
     window: int
     gate: float
     memory: int
     initial: Optional[Sequence[float]]
+    change: Optional[float]
+    accel_gate: Optional[float]
+    temperature_span: Optional[float]
     def __init__(
-        self, window: int, gate: float, memory: int = 64, initial: Optional[Sequence[float]] = None
+        self,
+        window: int,
+        gate: float,
+        memory: int = 64,
+        initial: Optional[Sequence[float]] = None,
+        change: Optional[float] = None,
+        accel_gate: Optional[float] = None,
+        temperature_span: Optional[float] = None,
     ) -> None: ...
 
 class Calibration:
@@ -84,7 +96,13 @@ class Stream:
         on_refused: Literal["raise", "mask"] = "raise",
     ) -> None: ...
     def update(
-        self, gyr: npt.ArrayLike, t: Optional[npt.ArrayLike] = None, *, ticks: Optional[npt.ArrayLike] = None
+        self,
+        gyr: npt.ArrayLike,
+        t: Optional[npt.ArrayLike] = None,
+        *,
+        ticks: Optional[npt.ArrayLike] = None,
+        acc: Optional[npt.ArrayLike] = None,
+        temperature: Optional[npt.ArrayLike] = None,
     ) -> Union[FloatArray, Tuple[FloatArray, npt.NDArray[np.bool_]]]:
         """(N, 3) samples → (N, 4) attitudes after each; (q, refused) when made with on_refused="mask"."""
     @property
@@ -122,6 +140,8 @@ def integrate(
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
     calibration: Optional[Calibration] = None,
     on_refused: Literal["raise"] = "raise",
+    acc: Optional[npt.ArrayLike] = None,
+    temperature: Optional[npt.ArrayLike] = None,
 ) -> FloatArray:
     """(N, 3) body rates (rad/s; increments in rad for delta_angles) → (N, 4) attitudes [w, x, y, z]
     (scalar first, Hamilton, body to reference) after each sample, in the dtype of `precision`.
@@ -148,6 +168,8 @@ def integrate(
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
     calibration: Optional[Calibration] = None,
     on_refused: Literal["mask"],
+    acc: Optional[npt.ArrayLike] = None,
+    temperature: Optional[npt.ArrayLike] = None,
 ) -> Tuple[FloatArray, npt.NDArray[np.bool_]]:
     """As above; a refused sample is skipped (state kept, interval carried into the next sample) and
     flagged True in the returned (N,) boolean mask."""
