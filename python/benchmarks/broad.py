@@ -37,6 +37,7 @@ import broad_metric as bm
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the non-interactive backend)
+from matplotlib import ticker  # noqa: E402
 
 COMMAND = "python python/benchmarks/broad.py PATH/TO/broad --out docs"
 #: Horizons (s) of the tables; the plot also uses the others.
@@ -517,10 +518,11 @@ def write_plot(res: Results, path: Path) -> None:
         for i, m in enumerate(METHODS)
     }
     fig = plt.figure(figsize=(16, 10))
-    grid = fig.add_gridspec(2, 4, hspace=0.45, wspace=0.06)
+    grid = fig.add_gridspec(2, 4, hspace=0.3, wspace=0.06, top=0.86)
     panels = [(column, NO_SHIFT, COLUMN_TITLES[column]) for column in BIAS_COLUMNS]
     panels.append(("oracle", None, "(c) oracle bias, timing-aligned (best σ each)"))
-    top = [fig.add_subplot(grid[0, i]) for i in range(len(panels))]
+    top = [fig.add_subplot(grid[0, 0])]
+    top += [fig.add_subplot(grid[0, i], sharey=top[0]) for i in range(1, len(panels))]
     for ax, (column, shift, title) in zip(top, panels):
         for m in METHODS:
             if has(res, m.name, column):
@@ -529,13 +531,15 @@ def write_plot(res: Results, path: Path) -> None:
         ax.set_yscale("log")
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("horizon (s)")
+        ax.yaxis.set_major_locator(ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.yaxis.set_major_formatter(ticker.FormatStrFormatter("%g"))
+        ax.yaxis.set_minor_formatter(ticker.NullFormatter())
         ax.grid(True, which="both", alpha=0.3)
         if ax is not top[0]:
-            ax.sharey(top[0])
             ax.tick_params(labelleft=False)
     top[0].set_ylabel("pooled error (deg, mean over trials)")
     handles, labels = top[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="upper center", ncol=4, fontsize=9, bbox_to_anchor=(0.5, 0.955))
+    fig.legend(handles, labels, loc="upper center", ncol=4, fontsize=9, bbox_to_anchor=(0.5, 0.95))
 
     bars = fig.add_subplot(grid[1, :])
     methods = [m for m in METHODS if has(res, m.name, "own")]
@@ -551,7 +555,8 @@ def write_plot(res: Results, path: Path) -> None:
                    fontsize=10)
     bars.grid(True, axis="y", alpha=0.3)
     bars.legend(fontsize=8, ncol=3)
-    fig.suptitle("Gyro-only orientation error on BROAD: started at the optical truth, gyro integrated for a horizon")
+    fig.suptitle("Gyro-only orientation error on BROAD: started at the optical truth, gyro integrated for a horizon",
+                 y=0.985)
     fig.text(0.5, 0.01, "Data: " + bm.ATTRIBUTION, ha="center", va="bottom", fontsize=8)
     fig.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(fig)

@@ -105,7 +105,7 @@ def shift_truth(quat: np.ndarray, half_samples: int) -> np.ndarray:
     """The truth shifted in time: row k is the attitude at t_k + (half_samples/2)·dt.
 
     A whole-sample shift takes a neighbouring row; a half-sample shift is the slerp midpoint of the two
-    rows around it, (a ± b)/|a ± b| with the sign of a·b (the bisector of the shorter arc). Rows whose
+    rows around it (each normalised), (a ± b)/|a ± b| with the sign of a·b (the shorter arc). Rows whose
     neighbours fall outside the record, or are NaN, are NaN.
     """
     n = len(quat)
@@ -121,7 +121,9 @@ def shift_truth(quat: np.ndarray, half_samples: int) -> np.ndarray:
     a = rows(lo)
     if not odd:
         return a
+    a = a / np.linalg.norm(a, axis=-1, keepdims=True)
     b = rows(lo + 1)
+    b = b / np.linalg.norm(b, axis=-1, keepdims=True)
     b = b * np.where(np.sum(a * b, axis=-1, keepdims=True) < 0.0, -1.0, 1.0)
     mid = a + b
     return mid / np.linalg.norm(mid, axis=-1, keepdims=True)

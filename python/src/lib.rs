@@ -18,7 +18,8 @@ use pyo3::prelude::*;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, FixedBias, FixedPeriod, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, FixedBias, FixedPeriod, SampleTiming,
+    TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
@@ -30,20 +31,27 @@ use quatprop::{
 
 /// A sample type built from one row `[x, y, z]` of the input buffer.
 trait FromRow<T>: Copy {
-    fn from_row(r: [T; 3]) -> Self;
+    /// The sample of a row pushed with `dt` (`None`: the first timestamp, which starts the stream).
+    fn from_row(r: [T; 3], dt: Option<T>, timing: &SampleTiming<T>) -> Self;
 }
 
 impl<T: Real> FromRow<T> for GyroSample<T> {
     #[inline(always)]
-    fn from_row(r: [T; 3]) -> Self {
+    fn from_row(r: [T; 3], _: Option<T>, _: &SampleTiming<T>) -> Self {
         GyroSample::new(Vec3::new(r[0], r[1], r[2]))
     }
 }
 
 impl<T: Real> FromRow<T> for DeltaAngle<T> {
+    /// An increment (rad), or an interval-mean rate (rad/s) times its interval.
     #[inline(always)]
-    fn from_row(r: [T; 3]) -> Self {
-        DeltaAngle::new(Vec3::new(r[0], r[1], r[2]))
+    fn from_row(r: [T; 3], dt: Option<T>, timing: &SampleTiming<T>) -> Self {
+        let v = Vec3::new(r[0], r[1], r[2]);
+        if timing.is_interval_mean() {
+            timing.increment(GyroSample::new(v), dt.unwrap_or(T::ZERO))
+        } else {
+            DeltaAngle::new(v)
+        }
     }
 }
 
@@ -70,6 +78,9 @@ struct Time<'a, T> {
     clock: Clock<T>,
     seconds: &'a [f64],
     ticks: &'a [u32],
+    /// What a row means in time; the rate of the last accepted row (for the group delay).
+    timing: SampleTiming<T>,
+    last_rate: Vec3<T>,
 }
 
 impl<T: Real> Time<'_, T> {
@@ -152,8 +163,8 @@ where
     let mut result = Ok(());
     for (index, (row, o)) in rows.iter().zip(out.iter_mut()).enumerate() {
         let before = time.clock;
-        let sample = I::Sample::from_row(*row);
         let pushed = time.advance(index).and_then(|dt| {
+            let sample = I::Sample::from_row(*row, dt, &time.timing);
             match dt {
                 Some(dt) => p.push(sample, dt),
                 None => p.start(sample),
@@ -168,8 +179,10 @@ where
                     break;
                 }
             }
+        } else {
+            time.last_rate = Vec3::new(row[0], row[1], row[2]);
         }
-        let q = p.attitude();
+        let q = time.timing.ahead(p.attitude(), time.last_rate);
         *o = [q.w, q.x, q.y, q.z];
     }
     *prop = local;
@@ -237,6 +250,9 @@ struct Session<T: Real> {
     refused: u64,
     /// The sum of the refused delta angles (rad, body axes; finite ones only): rotation not integrated.
     lost: [f64; 3],
+    /// What a row means in time, and the rate of the last accepted row.
+    timing: SampleTiming<T>,
+    last_rate: Vec3<T>,
 }
 
 impl<T: Real> Session<T> {
@@ -317,6 +333,14 @@ impl<T: Real> Session<T> {
                 ))
             }
         };
+        let timing = if args.interval_mean {
+            SampleTiming::interval_mean()
+        } else {
+            SampleTiming::instant()
+        };
+        let timing = timing
+            .with_group_delay(T::from_f64(args.group_delay))
+            .map_err(config_error)?;
         Ok(Self {
             p: config.build(q0).map_err(config_error)?,
             clock,
@@ -326,6 +350,8 @@ impl<T: Real> Session<T> {
             estimator,
             refused: 0,
             lost: [0.0; 3],
+            timing,
+            last_rate: Vec3::ZERO,
         })
     }
 
@@ -344,7 +370,7 @@ impl<T: Real> Session<T> {
         rows.iter()
             .enumerate()
             .map(|(k, r)| {
-                let mut s = GyroSample::<T>::from_row(*r);
+                let mut s = GyroSample::new(Vec3::new(r[0], r[1], r[2]));
                 if let Some(c) = &self.calibration {
                     s = c.apply(s);
                 }
@@ -388,6 +414,8 @@ impl<T: Real> Session<T> {
             clock: self.clock,
             seconds,
             ticks,
+            timing: self.timing,
+            last_rate: self.last_rate,
         };
         let result = self.p.visit(Run {
             time: &mut time,
@@ -396,6 +424,7 @@ impl<T: Real> Session<T> {
             mask: mask.as_deref_mut(),
         });
         self.clock = time.clock;
+        self.last_rate = time.last_rate;
         let deltas = matches!(self.p.config().input, InputKind::DeltaAngles(_));
         let mut lose = |row: &[T; 3]| {
             if deltas && row.iter().all(|e| e.is_finite()) {
@@ -446,6 +475,8 @@ struct StreamArgs {
     bias: Option<[f64; 3]>,
     estimator: Option<EstimatorArgs>,
     calibration: Option<CalibrationArgs>,
+    interval_mean: bool,
+    group_delay: f64,
 }
 
 /// A bias estimator as Python passes it: window (samples), gate (rad/s), memory (windows), initial bias
@@ -607,7 +638,7 @@ impl NativeStream {
     /// See `quatprop.Stream`; arguments already validated by the Python layer.
     #[new]
     #[pyo3(signature = (precision, period, timestamps, tick_hz, tick_bits, scheme, stabilizer, every, input,
-        coning, kahan, q0, mask, remap, matrix, bias, estimator, calibration))]
+        coning, kahan, q0, mask, remap, matrix, bias, estimator, calibration, interval_mean, group_delay))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         precision: &str,
@@ -628,6 +659,8 @@ impl NativeStream {
         bias: Option<[f64; 3]>,
         estimator: Option<EstimatorArgs>,
         calibration: Option<CalibrationArgs>,
+        interval_mean: bool,
+        group_delay: f64,
     ) -> PyResult<Self> {
         let args = StreamArgs {
             period,
@@ -646,6 +679,8 @@ impl NativeStream {
             bias,
             estimator,
             calibration,
+            interval_mean,
+            group_delay,
         };
         let made = match precision {
             "f32" => Sessions::F32(Session::new(&args)?),
@@ -942,7 +977,7 @@ macro_rules! calibrate_fn {
         ) -> PyResult<Bound<'py, PyArray2<$t>>> {
             let cal = calibration::<$t>(c).map_err(config_error)?;
             map_rows::<$t, 3, 3>(py, gyr, |r| {
-                let w = cal.apply(GyroSample::from_row(r)).rate;
+                let w = cal.apply(GyroSample::new(Vec3::new(r[0], r[1], r[2]))).rate;
                 [w.x, w.y, w.z]
             })
         }

@@ -229,3 +229,51 @@ def test_companions_are_checked_before_anything_is_taken():
         plain.update(gyr, temperature=np.full(20, 25.0))
     with pytest.raises(ValueError, match="2\\*\\*31"):
         quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=10, gate=0.05, memory=2**31))
+
+
+def test_interval_means_are_integrated_exactly_as_increments():
+    """Samples that are the means of ω(t) = 0.1 + 2 t rad/s (one axis) over each 10 ms interval: as
+    increments (sample="interval_mean") the angle is exact; read as rates at their timestamps (History)
+    each is the rate 5 ms earlier, and the angle misses about 2 · 0.005 rad/s over the 1 s."""
+    h, n = 0.01, 100
+    t1 = (np.arange(n) + 1) * h
+    t0 = t1 - h
+    mean = ((0.1 * t1 + t1**2) - (0.1 * t0 + t0**2)) / h  # exact interval means
+    gyr = np.zeros((n, 3))
+    gyr[:, 2] = mean
+    exact = 0.1 + 1.0  # ∫0^1 (0.1 + 2 t) dt
+    q = quatprop.integrate(gyr, dt=h, precision="f64", input="delta_angles", sample="interval_mean")
+    angle = 2 * np.arctan2(q[-1, 3], q[-1, 0])
+    assert abs(angle - exact) < 1e-12
+    q = quatprop.integrate(gyr, dt=h, precision="f64")
+    angle = 2 * np.arctan2(q[-1, 3], q[-1, 0])
+    assert 0.008 < exact - angle < 0.012  # History on means read as instants: about 0.01 rad short
+    with pytest.raises(ValueError, match="delta_angles"):
+        quatprop.Stream(dt=h, sample="interval_mean")
+
+
+def test_a_group_delay_carries_each_attitude_forward_by_the_delay():
+    """1 rad/s about z with a 7 ms delay: each attitude is the undelayed one turned 7 mrad further."""
+    gyr = np.tile([0.0, 0.0, 1.0], (50, 1))
+    q0 = quatprop.integrate(gyr, dt=1e-3, precision="f64")
+    q = quatprop.integrate(gyr, dt=1e-3, precision="f64", group_delay=7e-3)
+    a0 = 2 * np.arctan2(q0[:, 3], q0[:, 0])
+    a = 2 * np.arctan2(q[:, 3], q[:, 0])
+    np.testing.assert_allclose(a - a0, 7e-3, rtol=0, atol=1e-14)
+    with pytest.raises(ValueError, match="group_delay"):
+        quatprop.Stream(dt=1e-3, group_delay=-1e-3)
+    with pytest.raises(ValueError, match="needs rates"):
+        quatprop.Stream(dt=1e-3, input="delta_angles", group_delay=1e-3)
+
+
+@pytest.mark.parametrize("size", [1, 7, 400])
+def test_timing_is_kept_between_calls(size):
+    gyr = coning()
+    gyr[[300, 1500]] = np.nan
+    t = np.arange(N) * 1e-3 + 3.0
+    options = dict(precision="f32", input="delta_angles", coning="three_sample", sample="interval_mean",
+                   group_delay=2.5e-3, bias=quatprop.BiasEstimator(window=100, gate=0.05),
+                   on_refused="mask")
+    whole, _ = quatprop.integrate(gyr, t=t, **options)
+    q, _ = chunked(quatprop.Stream(timestamps=True, **options), gyr, size, t=t)
+    assert q.tobytes() == whole.tobytes()

@@ -311,7 +311,7 @@ impl<T: Real> BiasEstimator<T> {
 
     /// Fits bias(T), a straight line per axis, through the still windows' biases and mean temperatures
     /// (given through [`BiasEstimator::update_with`]), and applies it once the windows' temperatures have a
-    /// standard deviation of at least `span` (their unit; e.g. 1 °C).
+    /// standard deviation of at least `span` (their unit; e.g. 0.5 °C).
     ///
     /// # Errors
     /// [`Error::InvalidEstimator`] if `span` is not finite and positive.

@@ -9,6 +9,7 @@
 //! | [`FixedBias`], [`BiasEstimator`] | a biased sample | the sample minus the bias (fixed, or learned while the body is still) |
 //! | [`FixedPeriod`] | a sample period given once | the `dt` of each sample, summing to `k·period` exactly |
 //! | [`TickClock`] | the sensor's own timestamps (integer ticks, wrapping) | the `dt` of each sample, exact, with gaps counted |
+//! | [`SampleTiming`] | what a sample means in time: the rate at its timestamp or the mean over the interval before it, and a group delay | angle increments for interval means; the attitude carried forward by the delay |
 //!
 //! ```
 //! use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
@@ -39,12 +40,14 @@ mod bias;
 mod calibration;
 mod scale;
 mod time;
+mod timing;
 
 pub use alignment::{Alignment, AxisRemap, ROTATION_TOLERANCE};
 pub use bias::{Aux, BiasEstimator, FixedBias};
 pub use calibration::Calibration;
 pub use scale::CountScale;
 pub use time::{FixedPeriod, TickClock};
+pub use timing::SampleTiming;
 
 #[cfg(doc)]
 use crate::GyroSample;

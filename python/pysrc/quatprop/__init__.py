@@ -42,6 +42,7 @@ __all__ = [
     "INPUTS",
     "CONINGS",
     "AXIS_REMAPS",
+    "SAMPLES",
 ]
 
 __version__ = "0.2.0"
@@ -55,6 +56,8 @@ INPUTS = ("hold", "linear", "history", "twice_rate", "gauss_points", "delta_angl
 CONINGS = ("uncorrected", "one_plus_previous", "two_sample", "three_sample", "four_sample", "five_sample")
 """Coning corrections for ``input="delta_angles"`` (the core's ``ConingKind``)."""
 AXIS_REMAPS = tuple(_native.AXIS_REMAPS)
+#: What a sample means in time (``sample=``): the rate at its timestamp, or the mean over the interval before it.
+SAMPLES = ("instant", "interval_mean")
 """The 24 axis remaps (the core's ``AxisRemap``): ``"PyNxPz"`` means body x = +sensor y,
 body y = −sensor x, body z = +sensor z."""
 
@@ -239,6 +242,14 @@ _OPTIONS_DOC = """
             that is not a rotation (within 1e-4) raises ``ValueError``.
         bias: subtracted after the alignment (body axes): a fixed ``[bx, by, bz]`` (rad/s) or a
             :class:`BiasEstimator`. Not with ``delta_angles``.
+        sample: what a sample means in time (the core's ``frontend::SampleTiming``): ``"instant"`` (the
+            default), the rate at its timestamp, which the rate input models interpolate; or
+            ``"interval_mean"``, the mean rate over the interval that ends at its timestamp, integrated
+            exactly as the increment ``ω·dt`` by ``input="delta_angles"`` (required) with its ``coning``
+            correction. The front end (calibration, alignment, bias) applies to these rates first.
+        group_delay: seconds the samples lag the motion (a low-pass filter's group delay; 0 by default):
+            each returned attitude is the propagated one (at ``t − group_delay``) carried forward by
+            ``group_delay`` at the last accepted sample's rate.
         on_refused: ``"raise"``: a refused sample raises :class:`RefusedSample` (its index, kind and
             reason). ``"mask"``: a refused sample is skipped — the state stays as after the last
             accepted sample and its interval carries into the next sample, as the Rust docs prescribe —
@@ -290,8 +301,23 @@ class Stream:
         bias=None,
         calibration: Optional[Calibration] = None,
         on_refused: str = "raise",
+        sample: str = "instant",
+        group_delay: float = 0.0,
     ) -> None:
         self._precision = None if precision is None else _choice("precision", precision, tuple(_DTYPES))
+        sample = _choice("sample", sample, SAMPLES)
+        interval_mean = sample == "interval_mean"
+        if interval_mean and input != "delta_angles":
+            raise ValueError(
+                'sample="interval_mean" rates are integrated as angle increments: give input="delta_angles"'
+            )
+        group_delay = float(group_delay)
+        if not (np.isfinite(group_delay) and group_delay >= 0.0):
+            raise ValueError(f"group_delay must be a finite number of seconds >= 0, got {group_delay!r}")
+        if group_delay > 0.0 and input == "delta_angles" and not interval_mean:
+            raise ValueError('group_delay needs rates: not with raw delta angles (use sample="interval_mean")')
+        # Rates (rad/s) come in unless the rows are raw increments.
+        rates_in = input != "delta_angles" or interval_mean
         scheme = _choice("scheme", scheme, SCHEMES)
         stab, every = _stabilizer(stabilizer)
         input = _choice("input", input, INPUTS)
@@ -337,7 +363,7 @@ class Stream:
         fixed_bias = None
         estimator = None
         if bias is not None:
-            if input == "delta_angles":
+            if not rates_in:
                 raise ValueError("bias (rad/s) does not apply to delta angles")
             if isinstance(bias, BiasEstimator):
                 estimator = bias._native()
@@ -351,7 +377,7 @@ class Stream:
         if calibration is not None:
             if not isinstance(calibration, Calibration):
                 raise TypeError(f"calibration must be a quatprop.Calibration, got {type(calibration).__name__}")
-            if input == "delta_angles":
+            if not rates_in:
                 raise ValueError("calibration (rad/s readings) does not apply to delta angles")
             cal = calibration._native()
 
@@ -373,6 +399,8 @@ class Stream:
             fixed_bias,
             estimator,
             cal,
+            interval_mean,
+            group_delay,
         )
         # Made now, so a bad option fails here; remade in f32 if the first samples decide so.
         self._native = _native.NativeStream(self._precision or "f64", *self._args)
@@ -513,6 +541,8 @@ def integrate(
     on_refused: str = "raise",
     acc=None,
     temperature=None,
+    sample: str = "instant",
+    group_delay: float = 0.0,
 ):
     """Integrates body-frame gyro samples into attitude quaternions, bit for bit as the Rust library.
 
@@ -571,6 +601,8 @@ def integrate(
         bias=bias,
         calibration=calibration,
         on_refused=on_refused,
+        sample=sample,
+        group_delay=group_delay,
     )
     return stream.update(gyr, t, ticks=ticks, acc=acc, temperature=temperature)
 

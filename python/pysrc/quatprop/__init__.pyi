@@ -14,6 +14,7 @@ STABILIZERS: Tuple[str, ...]
 INPUTS: Tuple[str, ...]
 CONINGS: Tuple[str, ...]
 AXIS_REMAPS: Tuple[str, ...]
+SAMPLES: Tuple[str, ...]
 
 Scheme = Literal["euler", "rk2", "rk3", "rk4", "rk5", "expmap", "magnus4", "cf4"]
 # "off", "normalize", "first_order", or "every:N" (N >= 1).
@@ -22,6 +23,7 @@ Input = Literal["hold", "linear", "history", "twice_rate", "gauss_points", "delt
 Coning = Literal["uncorrected", "one_plus_previous", "two_sample", "three_sample", "four_sample", "five_sample"]
 Accumulator = Literal["plain", "kahan"]
 Precision = Literal["f32", "f64"]
+SampleMeaning = Literal["instant", "interval_mean"]
 FloatArray = npt.NDArray[np.floating]
 
 class RefusedSample(ValueError):
@@ -94,6 +96,8 @@ class Stream:
         bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
         calibration: Optional[Calibration] = None,
         on_refused: Literal["raise", "mask"] = "raise",
+        sample: SampleMeaning = "instant",
+        group_delay: float = 0.0,
     ) -> None: ...
     def update(
         self,
@@ -142,6 +146,8 @@ def integrate(
     on_refused: Literal["raise"] = "raise",
     acc: Optional[npt.ArrayLike] = None,
     temperature: Optional[npt.ArrayLike] = None,
+    sample: SampleMeaning = "instant",
+    group_delay: float = 0.0,
 ) -> FloatArray:
     """(N, 3) body rates (rad/s; increments in rad for delta_angles) → (N, 4) attitudes [w, x, y, z]
     (scalar first, Hamilton, body to reference) after each sample, in the dtype of `precision`.
@@ -170,6 +176,8 @@ def integrate(
     on_refused: Literal["mask"],
     acc: Optional[npt.ArrayLike] = None,
     temperature: Optional[npt.ArrayLike] = None,
+    sample: SampleMeaning = "instant",
+    group_delay: float = 0.0,
 ) -> Tuple[FloatArray, npt.NDArray[np.bool_]]:
     """As above; a refused sample is skipped (state kept, interval carried into the next sample) and
     flagged True in the returned (N,) boolean mask."""
