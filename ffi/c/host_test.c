@@ -115,6 +115,12 @@ static void bad_configuration(void) {
     REFUSED(&s, quatprop_set_alignment_matrix(&s, mirror), QUATPROP_NOT_A_ROTATION);
     REFUSED(&s, quatprop_set_bias_estimator(&s, 0, 0.05f, 64), QUATPROP_INVALID_ESTIMATOR);
     REFUSED(&s, quatprop_set_bias_estimator(&s, 1000, NAN, 64), QUATPROP_INVALID_ESTIMATOR);
+    /* A calibration that is singular, or not finite, is refused; the state stays as it was. */
+    const float offset[3] = {0.01f, -0.02f, 0.005f}, unit[3] = {1, 1, 1}, flat[3] = {1, 0, 1};
+    const float ident[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, nan_m[9] = {1, 0, 0, 0, NAN, 0, 0, 0, 1};
+    REFUSED(&s, quatprop_set_calibration(&s, offset, flat, ident), QUATPROP_INVALID_CALIBRATION);
+    REFUSED(&s, quatprop_set_calibration(&s, offset, unit, nan_m), QUATPROP_INVALID_CALIBRATION);
+    REFUSED(&s, quatprop_set_calibration(&s, offset, unit, NULL), QUATPROP_NULL_POINTER);
     const float nan_bias[3] = {0, NAN, 0};
     REFUSED(&s, quatprop_set_fixed_bias(&s, nan_bias), QUATPROP_NON_FINITE_RATE);
     REFUSED(&s, quatprop_set_tick_clock(&s, 1e6, 33), QUATPROP_INVALID_CLOCK);
@@ -238,12 +244,35 @@ static void delta_angles_and_kahan(void) {
             }
 }
 
+/* The calibration is applied to every rate sample first: a still sensor reading its offset does not turn;
+ * its sensitivity scales each axis before the misalignment mixes them. */
+static void calibration(void) {
+    quatprop_config_t c = config(QUATPROP_INPUT_HOLD);
+    quatprop_t s;
+    CHECK(quatprop_init(&s, &c) == QUATPROP_OK);
+    const float offset[3] = {0.01f, -0.02f, 0.005f}, sens[3] = {2, 1, 1};
+    const float ident[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    CHECK(quatprop_set_calibration(&s, offset, sens, ident) == QUATPROP_OK);
+    quatprop_sample_t still = {0.01f, -0.02f, 0.005f, 0};
+    for (int i = 0; i < 100; i++) CHECK(quatprop_push_rate(&s, &still, 1e-3f) == QUATPROP_OK);
+    quatprop_quat_t q;
+    CHECK(quatprop_get_attitude(&s, &q) == QUATPROP_OK);
+    CHECK(q.w == 1.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f);
+    /* 0.5 rad/s above the offset on x, sensitivity 2: 1 rad/s for 0.1 s, a 0.1 rad turn about x. */
+    quatprop_sample_t turn = {0.51f, -0.02f, 0.005f, 0};
+    for (int i = 0; i < 100; i++) CHECK(quatprop_push_rate(&s, &turn, 1e-3f) == QUATPROP_OK);
+    CHECK(quatprop_get_attitude(&s, &q) == QUATPROP_OK);
+    CHECK(fabsf(2.0f * atan2f(q.x, q.w) - 0.1f) < 1e-5f && fabsf(q.y) < 1e-6f && fabsf(q.z) < 1e-6f);
+    CHECK(quatprop_clear_calibration(&s) == QUATPROP_OK);
+}
+
 int main(void) {
     quick_start();
     not_initialized_and_null();
     bad_configuration();
     refused_samples();
     delta_angles_and_kahan();
+    calibration();
     printf("state %u bytes, align %u\n", (unsigned)sizeof(quatprop_t), (unsigned)_Alignof(quatprop_t));
     CHECK(sizeof(quatprop_t) == QUATPROP_STATE_SIZE && _Alignof(quatprop_t) == QUATPROP_STATE_ALIGN);
     printf("c-api: %u passed, %u failed\n", passed, failed);

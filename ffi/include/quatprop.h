@@ -224,7 +224,7 @@
 #define QUATPROP_REMAP_NZ_NY_NX 23
 
 /**
- * Result of every call. Values are fixed (ABI); 1 to 15 mirror `quatprop::Error`.
+ * Result of every call. Values are fixed (ABI); 1 to 16 mirror `quatprop::Error`.
  */
 typedef enum {
   /**
@@ -291,6 +291,11 @@ typedef enum {
    * A core error this version of the C API does not name.
    */
   QUATPROP_UNKNOWN_ERROR = 15,
+  /**
+   * A gyro calibration has a number that is not finite, or `M·diag(sensitivity)` is singular or has
+   * a condition number (∞-norm) above 100.
+   */
+  QUATPROP_INVALID_CALIBRATION = 16,
   /**
    * A pointer argument is NULL.
    */
@@ -535,6 +540,30 @@ quatprop_status_t quatprop_set_axis_remap(quatprop_t *s, uint32_t remap);
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `r` NULL or 9 readable floats.
  */
 quatprop_status_t quatprop_set_alignment_matrix(quatprop_t *s, const float *r);
+
+/**
+ * Sets the gyro's calibration, applied to every rate sample first (sensor axes, before the alignment):
+ * `w = M (s ⊙ (r − o))` for a reading `r` (rad/s), offset `o[3]` (rad/s), per-axis sensitivity `s[3]`
+ * and misalignment `M` (`m[9]`, row-major; Fusion's `FusionModelInertial`, the same bits);
+ * `QUATPROP_INVALID_CALIBRATION` for a number that is not finite or `M·diag(s)` singular or with a
+ * condition number above 100 (the state is then unchanged).
+ *
+ * # Safety
+ * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `offset` and `sensitivity` NULL or
+ * 3 readable floats, `m` NULL or 9.
+ */
+quatprop_status_t quatprop_set_calibration(quatprop_t *s,
+                                           const float *offset,
+                                           const float *sensitivity,
+                                           const float *m);
+
+/**
+ * Removes the calibration (readings are then taken as calibrated rates).
+ *
+ * # Safety
+ * `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+ */
+quatprop_status_t quatprop_clear_calibration(quatprop_t *s);
 
 /**
  * Subtracts a fixed bias `b[3]` (rad/s, body axes, finite) from every rate sample; replaces any

@@ -30,7 +30,9 @@ mod state;
 mod tests;
 
 use core::mem::{align_of, size_of};
-use quatprop::frontend::{Alignment, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock};
+use quatprop::frontend::{
+    Alignment, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod, TickClock,
+};
 use quatprop::{DeltaAngle, Error, GyroSample, Quat};
 use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 
@@ -125,7 +127,7 @@ fn encode(inner: &Inner) -> Result<Block, quatprop_status_t> {
     Ok(b)
 }
 
-/// Result of every call. Values are fixed (ABI); 1 to 15 mirror `quatprop::Error`.
+/// Result of every call. Values are fixed (ABI); 1 to 16 mirror `quatprop::Error`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum quatprop_status_t {
@@ -161,6 +163,9 @@ pub enum quatprop_status_t {
     QUATPROP_NON_FINITE_RESULT = 14,
     /// A core error this version of the C API does not name.
     QUATPROP_UNKNOWN_ERROR = 15,
+    /// A gyro calibration has a number that is not finite, or `M·diag(sensitivity)` is singular or has
+    /// a condition number (∞-norm) above 100.
+    QUATPROP_INVALID_CALIBRATION = 16,
     /// A pointer argument is NULL.
     QUATPROP_NULL_POINTER = 100,
     /// A pointer argument is not aligned for its type.
@@ -200,6 +205,7 @@ fn status(f: Fail) -> quatprop_status_t {
             Error::InvalidEstimator => S::QUATPROP_INVALID_ESTIMATOR,
             Error::NonFiniteResult => S::QUATPROP_NON_FINITE_RESULT,
             Error::WrongSampleKind => S::QUATPROP_WRONG_INPUT_KIND,
+            Error::InvalidCalibration => S::QUATPROP_INVALID_CALIBRATION,
             _ => S::QUATPROP_UNKNOWN_ERROR,
         },
         Fail::BadEnum => S::QUATPROP_BAD_ENUM,
@@ -682,6 +688,58 @@ pub unsafe extern "C" fn quatprop_set_alignment_matrix(
     unsafe {
         with(s, |st| {
             st.front.alignment = Some(Alignment::from_matrix(r)?);
+            Ok(())
+        })
+    }
+}
+
+/// Sets the gyro's calibration, applied to every rate sample first (sensor axes, before the alignment):
+/// `w = M (s ⊙ (r − o))` for a reading `r` (rad/s), offset `o[3]` (rad/s), per-axis sensitivity `s[3]`
+/// and misalignment `M` (`m[9]`, row-major; Fusion's `FusionModelInertial`, the same bits);
+/// `QUATPROP_INVALID_CALIBRATION` for a number that is not finite or `M·diag(s)` singular or with a
+/// condition number above 100 (the state is then unchanged).
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `offset` and `sensitivity` NULL or
+/// 3 readable floats, `m` NULL or 9.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_set_calibration(
+    s: *mut quatprop_t,
+    offset: *const f32,
+    sensitivity: *const f32,
+    m: *const f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract (each pointer checked for NULL and alignment before it is read).
+    let read_all = unsafe {
+        (
+            read(offset.cast::<[f32; 3]>()),
+            read(sensitivity.cast::<[f32; 3]>()),
+            read(m.cast::<[[f32; 3]; 3]>()),
+        )
+    };
+    let (o, k, m) = match read_all {
+        (Ok(o), Ok(k), Ok(m)) => (o, k, m),
+        (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.calibration = Some(Calibration::new(vec3(o), vec3(k), m)?);
+            Ok(())
+        })
+    }
+}
+
+/// Removes the calibration (readings are then taken as calibrated rates).
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_clear_calibration(s: *mut quatprop_t) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe {
+        with(s, |st| {
+            st.front.calibration = None;
             Ok(())
         })
     }

@@ -14,7 +14,7 @@ use crate::quatprop_sample_t;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
+    Alignment, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod, TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::InputModel;
@@ -64,10 +64,12 @@ impl Bias {
     }
 }
 
-/// The sensor front end: counts → rad/s, sensor → body axes, bias removed; the time bases of the bursts.
+/// The sensor front end: counts → rad/s, the gyro's calibration, sensor → body axes, bias removed; the
+/// time bases of the bursts.
 #[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct FrontEnd {
     pub scale: Option<CountScale<f32>>,
+    pub calibration: Option<Calibration<f32>>,
     pub alignment: Option<Alignment<f32>>,
     pub bias: Bias,
     pub period: Option<FixedPeriod<f32>>,
@@ -77,6 +79,7 @@ pub struct FrontEnd {
 impl FrontEnd {
     const NONE: Self = Self {
         scale: None,
+        calibration: None,
         alignment: None,
         bias: Bias::None,
         period: None,
@@ -94,7 +97,7 @@ impl FrontEnd {
         i: usize,
         bias: &mut Bias,
     ) -> Result<GyroSample<f32>, Error> {
-        bias.apply(self.align(rates.get(i)))
+        bias.apply(self.calibrate_and_align(rates.get(i)))
     }
 
     #[inline(always)]
@@ -102,6 +105,15 @@ impl FrontEnd {
         match &self.alignment {
             Some(a) => a.apply(s),
             None => s,
+        }
+    }
+
+    /// The calibration (sensor axes), then the alignment: a rate sample's way to body axes.
+    #[inline(always)]
+    fn calibrate_and_align(&self, s: GyroSample<f32>) -> GyroSample<f32> {
+        match &self.calibration {
+            Some(c) => self.align(c.apply(s)),
+            None => self.align(s),
         }
     }
 }

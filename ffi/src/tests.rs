@@ -2,8 +2,10 @@
 //! decoded. (The header test is the crate `header/`.)
 
 use super::*;
+use quatprop::frontend::{
+    Alignment, Aux, BiasEstimator, Calibration, CountScale, FixedPeriod, TickClock,
+};
 use quatprop::Vec3;
-use quatprop::frontend::{Alignment, Aux, BiasEstimator, CountScale, FixedPeriod, TickClock};
 
 /// The largest state: delta angles with the five-sample correction, the float-float accumulator, and every
 /// front-end part (count scale, a matrix alignment, the bias estimator, period and clock), after samples.
@@ -21,18 +23,25 @@ fn largest() -> state::Inner {
     let r = [[0.0, 0.6, 0.8], [-1.0, 0.0, 0.0], [0.0, -0.8, 0.6]];
     inner.front.scale = Some(CountScale::full_scale_dps(2000.0).unwrap());
     inner.front.alignment = Some(Alignment::from_matrix(r).unwrap());
+    let m = [[1.0, 0.01, -0.02], [0.003, 1.0, 0.01], [-0.01, 0.02, 1.0]];
+    let cal = Calibration::new(Vec3::new(0.01, -0.02, 0.03), Vec3::new(1.01, 0.99, 1.02), m);
+    inner.front.calibration = Some(cal.unwrap());
     // The estimator with every option and every optional part of its state present: a candidate change,
     // the temperature line, the window's acceleration reference.
     let mut est = BiasEstimator::from_samples(2, 0.05, i32::MAX as u32)
         .and_then(|e| e.with_accel_gate(0.5))
         .and_then(|e| e.with_temperature_model(1.0))
         .unwrap();
-    for (k, b) in [0.0, 0.0, 0.001, 0.001, 0.01, 0.01, 0.02].into_iter().enumerate() {
+    for (k, b) in [0.0, 0.0, 0.001, 0.001, 0.01, 0.01, 0.02]
+        .into_iter()
+        .enumerate()
+    {
         let aux = Aux {
             accel: Some(Vec3::new(0.1, 0.2, 9.8)),
             temperature: Some(25.0 + 3.0 * k as f32),
         };
-        est.update_with(GyroSample::new(Vec3::new(b, -b, b)), aux).unwrap();
+        est.update_with(GyroSample::new(Vec3::new(b, -b, b)), aux)
+            .unwrap();
     }
     inner.front.bias = Bias::Estimator(est);
     inner.front.period = Some(FixedPeriod::new(1.0e-3).unwrap());
