@@ -102,15 +102,6 @@ pub fn sci(v: f64, digits: usize) -> String {
     }
 }
 
-/// A number with `digits` decimals, `–` for NaN.
-pub fn fixed(v: f64, digits: usize) -> String {
-    if v.is_nan() {
-        "–".into()
-    } else {
-        format!("{v:.digits$}")
-    }
-}
-
 /// Escapes `|` for a Markdown table cell.
 pub fn cell(s: &str) -> String {
     s.replace('|', "\\|")

@@ -181,9 +181,9 @@ impl<T: Real> Thermal<T> {
         if self.weight >= memory {
             // An exponential memory of about `memory` windows.
             let keep = (memory - T::ONE) / memory;
-            self.weight = self.weight * keep;
-            self.sum_t = self.sum_t * keep;
-            self.sum_tt = self.sum_tt * keep;
+            self.weight *= keep;
+            self.sum_t *= keep;
+            self.sum_tt *= keep;
             self.sum_b = self.sum_b * keep;
             self.sum_tb = self.sum_tb * keep;
         }
@@ -258,7 +258,7 @@ impl<T: Real> BiasEstimator<T> {
     /// not finite and positive.
     pub fn from_samples(window: u32, gate: T, memory: u32) -> Result<Self, Error> {
         let counted = |n: u32| n >= 1 && n <= i32::MAX as u32;
-        if !counted(window) || !counted(memory) || !(gate > T::ZERO && gate <= T::MAX) {
+        if !(counted(window) && counted(memory) && gate > T::ZERO && gate <= T::MAX) {
             return Err(Error::InvalidEstimator);
         }
         Ok(Self {
@@ -481,7 +481,7 @@ impl<T: Real> BiasEstimator<T> {
             variance,
             temperature,
         };
-        if !(m.bias.is_finite() && m.temperature.map_or(true, Real::is_finite)) {
+        if !(m.bias.is_finite() && m.temperature.is_none_or(Real::is_finite)) {
             return; // temperatures whose sum overflowed: nothing learned from this window
         }
         if self.learned == 0 {
@@ -583,6 +583,6 @@ impl<T: Real> Aux<T> {
     };
 
     fn is_finite(&self) -> bool {
-        self.accel.map_or(true, Vec3::is_finite) && self.temperature.map_or(true, Real::is_finite)
+        self.accel.is_none_or(Vec3::is_finite) && self.temperature.is_none_or(Real::is_finite)
     }
 }

@@ -456,7 +456,7 @@ fn following<T: Fz>(b: &mut Bytes<'_>, mut est: BiasEstimator<T>) {
             continue;
         }
         let aux_finite =
-            accel.map_or(true, |a| a.is_finite()) && temperature.map_or(true, |t| t.is_finite());
+            accel.is_none_or(|a| a.is_finite()) && temperature.is_none_or(|t| t.is_finite());
         let used = temperature.map_or(before.bias(), |t| before.bias_at(t));
         if !aux_finite || !used.is_finite() {
             assert_eq!(r, Err(Error::NonFiniteAux));

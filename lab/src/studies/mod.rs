@@ -26,7 +26,6 @@ registry! {
     scene_table::Scenes,
     sensor::Sensor,
     coning_drift::ConingDrift,
-    bias::Bias,
     time_base::TimeBaseStudy,
     long_horizon::LongHorizon,
 }

@@ -1162,7 +1162,7 @@ pub fn headline(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
          {}, horizon {horizon} s, gyro rates {rates:?} Hz, every configuration fed the same f32 samples. {}, this machine. Peers as crates: `ahrs` 0.8 \
          (`Madgwick::update_gyro`), `nalgebra` 0.34 (`UnitQuaternion`), `glam` 0.34 (`Quat::from_scaled_axis`), \
          all converted through `mint`; Fusion (C): its gyroscope update from its published source \
-         (`lab/src/peers.rs`; its FusionOffset runs as the real C code in the bias section).\n\n{table}\n\
+         (`lab/src/peers.rs`). Bias estimation beside Fusion's and VQF's: docs/bias.md.\n\n{table}\n\
          At equal cost, in one run: for each peer at {r} Hz, quatprop's lowest maximum error among configurations \
          and rates that need no more host time per simulated second.\n\n{vs}",
         scene.name(),
