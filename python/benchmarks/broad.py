@@ -20,6 +20,7 @@ import sys
 import time
 import warnings
 from dataclasses import dataclass
+from importlib.metadata import version as package_version
 from pathlib import Path
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -27,7 +28,6 @@ import ahrs
 import imufusion
 import matplotlib
 import numpy as np
-import scipy
 import vqf
 from scipy.spatial.transform import Rotation
 
@@ -84,26 +84,43 @@ QUATPROP_TIMING = {
 
 
 def quatprop_method(
-    name: str, bias_estimator: Optional[dict] = None, timing: Optional[str] = None, **integrate_kwargs
+    name: str,
+    bias_estimator: Optional[dict] = None,
+    timing: Optional[str] = None,
+    use_acc: bool = False,
+    **integrate_kwargs,
 ) -> Method:
     """A quatprop configuration: `integrate_kwargs` go to quatprop.integrate (scheme, input, precision, …);
     column (b) adds bias=quatprop.BiasEstimator(window=round(fs) (1 s), gate=3 °/s, memory=64), any of whose
-    arguments `bias_estimator` overrides; `timing` is needed for an input model not in QUATPROP_TIMING."""
+    arguments `bias_estimator` overrides or adds; use_acc=True also passes the accelerometer (m/s²) as
+    integrate(acc=…), for the options that read it. `timing` describes how the configuration places a
+    sample in time; it is needed unless the configuration's only timing option is an input model of
+    QUATPROP_TIMING."""
     estimator = {"gate": GATE, "memory": 64, **(bias_estimator or {})}
+    if timing is None:
+        if {"sample", "group_delay"} & integrate_kwargs.keys():
+            raise ValueError(f"quatprop {name}: describe its timing (timing=…)")
+        timing = QUATPROP_TIMING[integrate_kwargs.get("input", "history")]
 
     def run(gyr: np.ndarray, acc: np.ndarray, fs: float, estimate_bias: bool) -> np.ndarray:
         bias = quatprop.BiasEstimator(**{"window": int(round(fs)), **estimator}) if estimate_bias else None
-        return np.asarray(quatprop.integrate(gyr, dt=1.0 / fs, bias=bias, **integrate_kwargs), dtype=np.float64)
+        with_acc = {"acc": acc} if use_acc else {}
+        q = quatprop.integrate(gyr, dt=1.0 / fs, bias=bias, **with_acc, **integrate_kwargs)
+        return np.asarray(q, dtype=np.float64)
 
     arguments = ", ".join(f"{k}={v!r}" for k, v in integrate_kwargs.items())
-    window = estimator.get("window", "round(fs) (1 s)")
+    estimator_text = {
+        "window": "round(fs) (1 s)",
+        **estimator,
+        "gate": f"{np.degrees(estimator['gate']):.3g} °/s",
+    }
     return Method(
         name=f"quatprop {name}",
         run=run,
-        how=f"quatprop.integrate(gyr, dt=1/fs, {arguments}, bias=None or the estimator)",
-        timing=timing or QUATPROP_TIMING[integrate_kwargs.get("input", "history")],
-        own_bias=f"BiasEstimator(window={window}, gate={np.degrees(estimator['gate']):.3g} °/s in rad/s, "
-        f"memory={estimator['memory']})",
+        how=f"quatprop.integrate(gyr, dt=1/fs, {arguments}{', acc=acc' if use_acc else ''}, "
+        "bias=None or the estimator)",
+        timing=timing,
+        own_bias="BiasEstimator(" + ", ".join(f"{k}={v}" for k, v in estimator_text.items()) + ")",
     )
 
 
@@ -255,7 +272,8 @@ class Results:
     errors: Dict[Tuple[str, str, str], np.ndarray]
     cost: Dict[Tuple[str, str], float]
     starts: Dict[str, np.ndarray]
-    seconds: float
+    seconds: float  # wall time of the whole run
+    load: float  # the machine's 1-minute load average at its end
 
 
 def run_all(trials: List[bm.Trial]) -> Results:
@@ -274,10 +292,13 @@ def run_all(trials: List[bm.Trial]) -> Results:
             if i == 0 and column != "oracle":
                 cost[(method.name, column)] = seconds / len(gyr) * 1e9
             errors[(method.name, column, trial.name)] = np.stack(
-                [bm.errors(q, truth, trial.fs, starts[trial.name], HORIZONS, trial.movement) for truth in truths]
+                [
+                    bm.errors(q, truth, trial.fs, starts[trial.name], HORIZONS, trial.movement)
+                    for truth in truths
+                ]
             )
         progress(f"[{i + 1}/{len(trials)}] {trial.name}: done, {time.perf_counter() - began:.0f} s so far\n")
-    return Results(trials, errors, cost, starts, time.perf_counter() - began)
+    return Results(trials, errors, cost, starts, time.perf_counter() - began, os.getloadavg()[0])
 
 
 # ---- summaries ----------------------------------------------------------------------------------------
@@ -302,7 +323,9 @@ def pooled(res: Results, method: str, column: str) -> np.ndarray:
 
 def pooled_all_starts(res: Results, method: str, column: str) -> np.ndarray:
     """(shifts, horizons): the mean over every start point of every trial."""
-    return nanmean(np.concatenate([res.errors[(method, column, t.name)] for t in res.trials], axis=-1), axis=-1)
+    return nanmean(
+        np.concatenate([res.errors[(method, column, t.name)] for t in res.trials], axis=-1), axis=-1
+    )
 
 
 def has(res: Results, method: str, column: str) -> bool:
@@ -326,7 +349,7 @@ def fmt(x: float) -> str:
 
 def error_table(res: Results, summary, shift_of) -> List[str]:
     """Rows: methods; columns: the bias columns × TABLE_HORIZONS. shift_of(method) → shift index."""
-    head = "| method | " + " | ".join(f"{c[:3]} {h:g} s" for c in ("(a)", "(b)", "(c)") for h in TABLE_HORIZONS)
+    head = "| method | " + " | ".join(f"{c} {h:g} s" for c in ("(a)", "(b)", "(c)") for h in TABLE_HORIZONS)
     lines = [head + " |", "|---" * (1 + 3 * len(TABLE_HORIZONS)) + "|"]
     for m in METHODS:
         cells = []
@@ -344,14 +367,18 @@ def per_trial_table(res: Results, column: str, horizon: float) -> List[str]:
     h = HORIZONS.index(horizon)
     methods = [m for m in METHODS if has(res, m.name, column)]
     lines = [
-        "| trial | starts | " + " | ".join(m.name for m in methods) + " |",
+        "| trial | pairs | " + " | ".join(m.name for m in methods) + " |",
         "|---" * (2 + len(methods)) + "|",
     ]
     means = {m.name: trial_means(res, m.name, column)[:, NO_SHIFT, h] for m in methods}
     for i, t in enumerate(res.trials):
         n = int(np.isfinite(res.errors[(methods[0].name, column, t.name)][NO_SHIFT, h]).sum())
         lines.append(f"| {t.name} | {n} | " + " | ".join(fmt(means[m.name][i]) for m in methods) + " |")
-    lines.append("| **mean over trials** | | " + " | ".join(f"**{fmt(np.nanmean(means[m.name]))}**" for m in methods) + " |")
+    lines.append(
+        "| **mean over trials** | | "
+        + " | ".join(f"**{fmt(np.nanmean(means[m.name]))}**" for m in methods)
+        + " |"
+    )
     return lines
 
 
@@ -369,20 +396,41 @@ def shift_curve_table(res: Results) -> List[str]:
     return lines
 
 
+def findings(res: Results) -> List[str]:
+    """A few sentences with the run's own pooled figures."""
+
+    def at(method: Method, column: str, horizon: float, aligned: bool) -> float:
+        shift = SHIFTS.index(best_shift(res, method.name)) if aligned else NO_SHIFT
+        return pooled(res, method.name, column)[shift, HORIZONS.index(horizon)]
+
+    raw = [at(m, "none", 60.0, False) for m in METHODS]
+    as_they_are = [at(m, "oracle", SHIFT_FIT_HORIZON, False) for m in METHODS]
+    aligned = [at(m, "oracle", SHIFT_FIT_HORIZON, True) for m in METHODS]
+    own = [f"{m.name} {at(m, 'own', 60.0, True):.2f}°" for m in METHODS if has(res, m.name, "own")]
+    sigmas = sorted({best_shift(res, m.name) / 2 for m in METHODS})
+
+    def span(values: List[float]) -> str:
+        low, high = fmt(min(values)), fmt(max(values))
+        return f"{low}°" if low == high else f"{low}–{high}°"
+
+    return [
+        f"- Without bias removal every method drifts alike: {span(raw)} at 60 s.",
+        f"- With each method's own bias estimator, timing-aligned, at 60 s: {'; '.join(own)}.",
+        "- On equal input (the oracle bias) the integrators differ only by where they place a sample in time: "
+        f"{span(as_they_are)} at {SHIFT_FIT_HORIZON:g} s as they are, {span(aligned)} once each is shifted "
+        "by its best σ "
+        f"({', '.join(f'{s:+g}' for s in sigmas)} samples: a zero-order hold places a sample half a sample "
+        "earlier than an integrator that reads it as the rate at its own time).",
+    ]
+
+
 def versions() -> str:
-    import h5py
-
+    """The versions of everything that ran."""
+    packages = ("quatprop", "imufusion", "vqf", "ahrs", "scipy", "numpy", "h5py", "matplotlib")
     return (
-        f"quatprop {quatprop.__version__}, imufusion {package_version('imufusion')}, vqf {package_version('vqf')}, "
-        f"ahrs {package_version('ahrs')}, SciPy {scipy.__version__}, NumPy {np.__version__}, h5py {h5py.__version__}; "
-        f"Python {platform.python_version()}"
+        ", ".join(f"{name} {package_version(name)}" for name in packages)
+        + f"; Python {platform.python_version()}"
     )
-
-
-def package_version(name: str) -> str:
-    from importlib.metadata import version
-
-    return version(name)
 
 
 def write_markdown(res: Results, path: Path) -> None:
@@ -390,6 +438,7 @@ def write_markdown(res: Results, path: Path) -> None:
     shifts = {m.name: SHIFTS.index(best_shift(res, m.name)) for m in METHODS}
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     cpu = platform.processor() or platform.machine()
+    rest = [t.first_movement / t.fs for t in res.trials]
     out = [
         "<!-- Written by python/benchmarks/broad.py: do not edit by hand. Regenerate with "
         f"`{COMMAND}`. -->",
@@ -397,7 +446,8 @@ def write_markdown(res: Results, path: Path) -> None:
         "# Gyro-only orientation error on real IMU recordings (BROAD)",
         "",
         f"*Written by `python/benchmarks/broad.py` on {now}; regenerate with `{COMMAND}` "
-        f"(about {res.seconds / 60:.0f} min on this machine: {os.cpu_count()} cores, {cpu}). {versions()}.*",
+        f"({res.seconds:.0f} s on this machine: {os.cpu_count()} cores, {cpu}, load average {res.load:.1f} at the "
+        f"end). {versions()}.*",
         "",
         f"**Data:** {len(res.trials)} trials of BROAD, the Berlin Robust Orientation Estimation Assessment "
         f"Dataset: {bm.ATTRIBUTION}. The full dataset (39 trials, with the publishers' own evaluation code) is at "
@@ -420,16 +470,23 @@ def write_markdown(res: Results, path: Path) -> None:
         "- Computed exactly from one run per method over the whole trial from identity, q_k = the attitude "
         "after sample k: the estimate is truth_s ⊗ q_s⁻¹ ⊗ q_e, so the error is the angle of "
         "truth_e⁻¹ ⊗ truth_s ⊗ q_s⁻¹ ⊗ q_e. This is exact for a method whose only state is the attitude; a "
-        "bias estimator runs causally over the whole trial from its start (the trials start with 26–48 s at "
-        "rest), which is what a user streaming the data gets.",
+        "bias estimator runs causally over the whole trial from its start (these trials start with "
+        f"{min(rest):.0f}–{max(rest):.0f} s at rest), which is what a user streaming the data gets.",
         "- Per trial: the mean over its start points. **Pooled: the mean over trials** of the per-trial means "
         "(a second table gives the mean over all start points of all trials).",
         "- Bias columns: **(a)** the gyro as recorded; **(b)** each method's own bias estimator, run causally "
-        "from the start of the trial (a method without one: —); **(c)** the \"oracle\": the mean gyro over the "
+        'from the start of the trial (a method without one: —); **(c)** the "oracle": the mean gyro over the '
         "initial rest phase (the samples before the first movement sample) subtracted from the gyro before "
         "any method sees it, so every integrator gets the same input.",
         "",
+        "## In short",
+        "",
+        *findings(res),
+        "",
         "## Pooled error (degrees), mean over trials",
+        "",
+        "(a) no bias removal, (b) each method's own bias estimator, (c) the oracle bias; the timing as each "
+        "method places its samples (no shift).",
         "",
         *error_table(res, pooled, lambda m: NO_SHIFT),
         "",
@@ -438,6 +495,9 @@ def write_markdown(res: Results, path: Path) -> None:
         *error_table(res, pooled_all_starts, lambda m: NO_SHIFT),
         "",
         "## Per trial at 60 s (degrees)",
+        "",
+        "Each trial's mean over its start points, no shift; pairs: the start points whose 60 s pair is valid "
+        "(the truth not NaN at either end, the end inside the movement).",
         "",
     ]
     for column in BIAS_COLUMNS:
@@ -449,9 +509,9 @@ def write_markdown(res: Results, path: Path) -> None:
         "sample is the slerp midpoint of the two neighbouring truth samples), for σ from −3 to +3 in half "
         f"samples. Each method's best σ minimises its pooled oracle-bias (c) error at {SHIFT_FIT_HORIZON:g} s "
         "(the shortest table horizon: the misalignment error does not grow with the horizon while the drift "
-        "does), and every column is then evaluated with that σ. A positive σ: the method's attitude after "
-        "sample k is the true attitude at a later time than t_k. 1 sample = "
-        f"{1000.0 / fs:.2f} ms.",
+        "does), and every column is then evaluated with that σ. A negative σ: the method's attitude after "
+        "sample k is the true attitude at an earlier time than t_k, i.e. the gyro lags the optical reference "
+        f"(or the method places its samples too late). 1 sample = {1000.0 / fs:.2f} ms.",
         "",
         "| method | timing convention (how ω_k is placed in time; the attitude after sample k is compared "
         "with the truth at t_k) | best σ (samples) | best σ (ms) |",
@@ -478,7 +538,9 @@ def write_markdown(res: Results, path: Path) -> None:
         "above (input conversion included, file reading excluded). imufusion, ahrs and SciPy run a Python loop "
         "over the samples; quatprop and vqf loop in compiled code (vqf: updateBatchFullState, which also copies "
         "its whole state out after every sample, because quat3D is only there; vqf always runs its full "
-        "6D filter).",
+        "6D filter). A quatprop run takes a few milliseconds, so on a shared machine its figures move by tens "
+        f"of percent from run to run (the load average was {res.load:.1f} at the end of this one): read them "
+        "as tens of ns against the peers' microseconds.",
         "",
         "| method | (a) no bias estimation | (b) with its own bias estimator |",
         "|---|---|---|",
@@ -514,7 +576,12 @@ def write_plot(res: Results, path: Path) -> None:
     timing shift; bottom: per-trial error at 60 s with each method's own bias estimator."""
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     style = {
-        m.name: dict(color=colours[i % len(colours)], ls="--" if m.name.startswith("quatprop") else "-", marker="o", ms=3)
+        m.name: dict(
+            color=colours[i % len(colours)],
+            ls="--" if m.name.startswith("quatprop") else "-",
+            marker="o",
+            ms=3,
+        )
         for i, m in enumerate(METHODS)
     }
     fig = plt.figure(figsize=(16, 10))
@@ -547,16 +614,25 @@ def write_plot(res: Results, path: Path) -> None:
     x = np.arange(len(res.trials))
     h = HORIZONS.index(60.0)
     for j, m in enumerate(methods):
-        bars.bar(x + (j - (len(methods) - 1) / 2) * width, trial_means(res, m.name, "own")[:, NO_SHIFT, h], width,
-                 color=style[m.name]["color"], label=m.name)
+        bars.bar(
+            x + (j - (len(methods) - 1) / 2) * width,
+            trial_means(res, m.name, "own")[:, NO_SHIFT, h],
+            width,
+            color=style[m.name]["color"],
+            label=m.name,
+        )
     bars.set_xticks(x, [t.name for t in res.trials], rotation=15, ha="right", fontsize=8)
     bars.set_ylabel("error at 60 s (deg)")
-    bars.set_title("Per trial at 60 s, (b) each method's own bias estimator (mean over the trial's start points)",
-                   fontsize=10)
+    bars.set_title(
+        "Per trial at 60 s, (b) each method's own bias estimator, no shift (mean over the trial's start points)",
+        fontsize=10,
+    )
     bars.grid(True, axis="y", alpha=0.3)
     bars.legend(fontsize=8, ncol=3)
-    fig.suptitle("Gyro-only orientation error on BROAD: started at the optical truth, gyro integrated for a horizon",
-                 y=0.985)
+    fig.suptitle(
+        "Gyro-only orientation error on BROAD: started at the optical truth, gyro integrated for a horizon",
+        y=0.985,
+    )
     fig.text(0.5, 0.01, "Data: " + bm.ATTRIBUTION, ha="center", va="bottom", fontsize=8)
     fig.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(fig)
@@ -581,7 +657,9 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     write_markdown(res, args.out / "broad.md")
     write_plot(res, args.out / "broad.png")
-    print(f"wrote {args.out / 'broad.md'} and {args.out / 'broad.png'} in {res.seconds:.0f} s", file=sys.stderr)
+    print(
+        f"wrote {args.out / 'broad.md'} and {args.out / 'broad.png'} in {res.seconds:.0f} s", file=sys.stderr
+    )
 
 
 if __name__ == "__main__":

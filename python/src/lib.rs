@@ -18,8 +18,8 @@ use pyo3::prelude::*;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, FixedBias, FixedPeriod, SampleTiming,
-    TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
+    SampleTiming, TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
@@ -31,27 +31,43 @@ use quatprop::{
 
 /// A sample type built from one row `[x, y, z]` of the input buffer.
 trait FromRow<T>: Copy {
-    /// The sample of a row pushed with `dt` (`None`: the first timestamp, which starts the stream).
-    fn from_row(r: [T; 3], dt: Option<T>, timing: &SampleTiming<T>) -> Self;
+    /// The sample of a row (clipped or not) pushed with `dt` (`None`: the first timestamp, which starts
+    /// the stream).
+    fn from_row(r: [T; 3], saturated: bool, dt: Option<T>, timing: &SampleTiming<T>) -> Self;
+    /// The rotation the sample carries (rad), if it is an increment.
+    fn angle(&self) -> Option<Vec3<T>>;
 }
 
 impl<T: Real> FromRow<T> for GyroSample<T> {
     #[inline(always)]
-    fn from_row(r: [T; 3], _: Option<T>, _: &SampleTiming<T>) -> Self {
-        GyroSample::new(Vec3::new(r[0], r[1], r[2]))
+    fn from_row(r: [T; 3], saturated: bool, _: Option<T>, _: &SampleTiming<T>) -> Self {
+        GyroSample {
+            rate: Vec3::new(r[0], r[1], r[2]),
+            saturated,
+        }
+    }
+    fn angle(&self) -> Option<Vec3<T>> {
+        None
     }
 }
 
 impl<T: Real> FromRow<T> for DeltaAngle<T> {
     /// An increment (rad), or an interval-mean rate (rad/s) times its interval.
     #[inline(always)]
-    fn from_row(r: [T; 3], dt: Option<T>, timing: &SampleTiming<T>) -> Self {
+    fn from_row(r: [T; 3], saturated: bool, dt: Option<T>, timing: &SampleTiming<T>) -> Self {
         let v = Vec3::new(r[0], r[1], r[2]);
         if timing.is_interval_mean() {
-            timing.increment(GyroSample::new(v), dt.unwrap_or(T::ZERO))
+            let s = GyroSample { rate: v, saturated };
+            timing.increment(s, dt.unwrap_or(T::ZERO))
         } else {
-            DeltaAngle::new(v)
+            DeltaAngle {
+                angle: v,
+                saturated,
+            }
         }
+    }
+    fn angle(&self) -> Option<Vec3<T>> {
+        Some(self.angle)
     }
 }
 
@@ -81,6 +97,8 @@ struct Time<'a, T> {
     /// What a row means in time; the rate of the last accepted row (for the group delay).
     timing: SampleTiming<T>,
     last_rate: Vec3<T>,
+    /// The rotation the refused increments carried (rad; finite ones only).
+    lost: [f64; 3],
 }
 
 impl<T: Real> Time<'_, T> {
@@ -147,6 +165,7 @@ fn run<T, S, I, Z, A>(
     prop: &mut Propagator<T, S, I, Z, A>,
     time: &mut Time<'_, T>,
     rows: &[[T; 3]],
+    saturated: &[bool],
     out: &mut [[T; 4]],
     mut mask: Option<&mut [bool]>,
 ) -> Result<(), Refused>
@@ -163,8 +182,11 @@ where
     let mut result = Ok(());
     for (index, (row, o)) in rows.iter().zip(out.iter_mut()).enumerate() {
         let before = time.clock;
+        let clipped = saturated.get(index).copied().unwrap_or(false);
+        let mut interval = None;
         let pushed = time.advance(index).and_then(|dt| {
-            let sample = I::Sample::from_row(*row, dt, &time.timing);
+            interval = dt;
+            let sample = I::Sample::from_row(*row, clipped, dt, &time.timing);
             match dt {
                 Some(dt) => p.push(sample, dt),
                 None => p.start(sample),
@@ -172,6 +194,13 @@ where
             .inspect_err(|_| time.refused(dt, before))
         });
         if let Err(error) = pushed {
+            // The rotation a refused increment took with it (an interval mean's needs its interval).
+            let refused = I::Sample::from_row(*row, clipped, interval, &time.timing);
+            if let Some(a) = refused.angle().filter(|a| a.is_finite()) {
+                for (l, e) in time.lost.iter_mut().zip([a.x, a.y, a.z]) {
+                    *l += e.to_f64();
+                }
+            }
             match mask.as_deref_mut().and_then(|m| m.get_mut(index)) {
                 Some(m) => *m = true,
                 None => {
@@ -194,6 +223,8 @@ where
 struct Run<'a, 'b, T> {
     time: &'a mut Time<'b, T>,
     rows: &'a [[T; 3]],
+    /// Per row, clipped at a rail (empty: none is).
+    saturated: &'a [bool],
     out: &'a mut [[T; 4]],
     mask: Option<&'a mut [bool]>,
 }
@@ -206,7 +237,7 @@ impl<T: Real> Visit<T> for Run<'_, '_, T> {
         I: InputModel<T, Sample = GyroSample<T>>,
         A: Accumulator<T>,
     {
-        run(p, self.time, self.rows, self.out, self.mask)
+        run(p, self.time, self.rows, self.saturated, self.out, self.mask)
     }
     fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
     where
@@ -214,7 +245,7 @@ impl<T: Real> Visit<T> for Run<'_, '_, T> {
         I: InputModel<T, Sample = DeltaAngle<T>>,
         A: Accumulator<T>,
     {
-        run(p, self.time, self.rows, self.out, self.mask)
+        run(p, self.time, self.rows, self.saturated, self.out, self.mask)
     }
 }
 
@@ -243,6 +274,7 @@ impl<T: Real> Companions<'_, T> {
 struct Session<T: Real> {
     p: Configured<T>,
     clock: Clock<T>,
+    scale: Option<CountScale<T>>,
     calibration: Option<Calibration<T>>,
     alignment: Option<Alignment<T>>,
     fixed: Option<FixedBias<T>>,
@@ -341,9 +373,17 @@ impl<T: Real> Session<T> {
         let timing = timing
             .with_group_delay(T::from_f64(args.group_delay))
             .map_err(config_error)?;
+        let scale = match args.count_scale {
+            Some((true, fs)) => Some(CountScale::full_scale_dps(fs).map_err(config_error)?),
+            Some((false, sensitivity)) => {
+                Some(CountScale::sensitivity(sensitivity).map_err(config_error)?)
+            }
+            None => None,
+        };
         Ok(Self {
             p: config.build(q0).map_err(config_error)?,
             clock,
+            scale,
             calibration,
             alignment,
             fixed,
@@ -363,52 +403,78 @@ impl<T: Real> Session<T> {
             || self.estimator.is_some()
     }
 
-    /// The front end over `rows`: the gyro's calibration (sensor axes), the alignment (sensor to body
-    /// axes), then the bias (body axes), as the README's quick start composes them per sample. A sample the bias estimator refuses (NaN) is
-    /// passed on unchanged, so the propagator refuses it too.
-    fn front_end(&mut self, rows: &[[T; 3]], aux: &Companions<'_, T>) -> Vec<[T; 3]> {
-        rows.iter()
-            .enumerate()
-            .map(|(k, r)| {
-                let mut s = GyroSample::new(Vec3::new(r[0], r[1], r[2]));
-                if let Some(c) = &self.calibration {
-                    s = c.apply(s);
-                }
-                if let Some(a) = &self.alignment {
-                    s = a.apply(s);
-                }
-                if let Some(b) = &self.fixed {
-                    s = b.apply(s);
-                }
-                if let Some(e) = self.estimator.as_mut() {
-                    s = e.update_with(s, aux.at(k)).unwrap_or(s);
-                }
-                [s.rate.x, s.rate.y, s.rate.z]
-            })
-            .collect()
+    /// Sample `k` of the input through the front end: the count scale (counts only), the gyro's
+    /// calibration (sensor axes), the alignment (sensor to body axes), then the bias (body axes), as the
+    /// README's quick start composes them. A sample the bias estimator refuses (NaN) is passed on
+    /// unchanged, so the propagator refuses it too.
+    fn front_sample(
+        &mut self,
+        input: &Input<'_, T>,
+        k: usize,
+        aux: &Companions<'_, T>,
+    ) -> GyroSample<T> {
+        let mut s = match input {
+            Input::Counts(c, scale) => scale.sample(c[k]),
+            Input::Rows(r) => GyroSample::new(Vec3::new(r[k][0], r[k][1], r[k][2])),
+        };
+        if let Some(c) = &self.calibration {
+            s = c.apply(s);
+        }
+        if let Some(a) = &self.alignment {
+            s = a.apply(s);
+        }
+        if let Some(b) = &self.fixed {
+            s = b.apply(s);
+        }
+        if let Some(e) = self.estimator.as_mut() {
+            s = e.update_with(s, aux.at(k)).unwrap_or(s);
+        }
+        s
     }
 
-    /// The rows (and their timestamps, for a timed clock: as many as rows) through the front end and the
+    /// The first `n` samples of the input through the front end: rows and their clipped flags (empty
+    /// when nothing can clip: no count scale).
+    fn front_end(
+        &mut self,
+        input: &Input<'_, T>,
+        n: usize,
+        aux: &Companions<'_, T>,
+    ) -> (Vec<[T; 3]>, Vec<bool>) {
+        let mut rows = Vec::with_capacity(n);
+        let mut clipped = Vec::new();
+        for k in 0..n {
+            let s = self.front_sample(input, k, aux);
+            rows.push([s.rate.x, s.rate.y, s.rate.z]);
+            if matches!(input, Input::Counts(..)) {
+                clipped.push(s.saturated);
+            }
+        }
+        (rows, clipped)
+    }
+
+    /// The input (and its timestamps, for a timed clock: as many as rows) through the front end and the
     /// propagator, the attitude after each row into `out`. With `mask` a refused sample is flagged and
     /// skipped; without, the first one stops the call with the propagator and clock as after the last
     /// accepted sample and the front end as after the refused one (it sees every sample given), so the
     /// rows after it can be given next.
     fn update(
         &mut self,
-        rows: &[[T; 3]],
+        input: &Input<'_, T>,
         aux: &Companions<'_, T>,
         seconds: &[f64],
         ticks: &[u32],
         out: &mut [[T; 4]],
         mut mask: Option<&mut [bool]>,
     ) -> Result<(), Refused> {
+        let n = out.len();
         let estimator = self.estimator;
         let processed;
-        let input = if self.has_front_end() {
-            processed = self.front_end(rows, aux);
-            &processed[..]
-        } else {
-            rows
+        let (rows, clipped): (&[[T; 3]], &[bool]) = match input {
+            Input::Rows(r) if !self.has_front_end() => (r, &[]),
+            _ => {
+                processed = self.front_end(input, n, aux);
+                (&processed.0, &processed.1)
+            }
         };
         let mut time = Time {
             clock: self.clock,
@@ -416,45 +482,42 @@ impl<T: Real> Session<T> {
             ticks,
             timing: self.timing,
             last_rate: self.last_rate,
+            lost: [0.0; 3],
         };
         let result = self.p.visit(Run {
             time: &mut time,
-            rows: input,
+            rows,
+            saturated: clipped,
             out,
             mask: mask.as_deref_mut(),
         });
         self.clock = time.clock;
         self.last_rate = time.last_rate;
-        let deltas = matches!(self.p.config().input, InputKind::DeltaAngles(_));
-        let mut lose = |row: &[T; 3]| {
-            if deltas && row.iter().all(|e| e.is_finite()) {
-                for (l, e) in self.lost.iter_mut().zip(row) {
-                    *l += e.to_f64();
-                }
-            }
-        };
+        for (l, e) in self.lost.iter_mut().zip(time.lost) {
+            *l += e;
+        }
         match &result {
             Ok(()) => {
                 let flags = mask.as_deref().unwrap_or(&[]);
-                for (row, _) in input.iter().zip(flags).filter(|(_, &f)| f) {
-                    lose(row);
-                }
                 self.refused += flags.iter().filter(|&&f| f).count() as u64;
             }
             Err(r) => {
-                if let Some(row) = input.get(r.index) {
-                    lose(row);
-                }
                 self.refused += 1;
                 // The estimator has seen the whole call: back to where the refused sample left it.
                 if estimator.is_some() {
                     self.estimator = estimator;
-                    self.front_end(&rows[..=r.index], aux);
+                    self.front_end(input, r.index + 1, aux);
                 }
             }
         }
         result
     }
+}
+
+/// One call's samples: rows of rates (rad/s) or increments (rad), or raw counts with the stream's scale.
+enum Input<'a, T> {
+    Rows(&'a [[T; 3]]),
+    Counts(&'a [[i16; 3]], CountScale<T>),
 }
 
 /// The arguments of a stream as the Python layer passes them (validated there; checked again here).
@@ -477,6 +540,8 @@ struct StreamArgs {
     calibration: Option<CalibrationArgs>,
     interval_mean: bool,
     group_delay: f64,
+    /// `(true, full scale °/s)` or `(false, counts per °/s)`.
+    count_scale: Option<(bool, f64)>,
 }
 
 /// A bias estimator as Python passes it: window (samples), gate (rad/s), memory (windows), initial bias
@@ -535,6 +600,7 @@ type Updated<'py, T> = (
 /// temperatures.
 struct Arrays<'py, T: numpy::Element> {
     gyr: PyReadonlyArray2<'py, T>,
+    counts: Option<PyReadonlyArray2<'py, i16>>,
     t: Option<PyReadonlyArray1<'py, f64>>,
     ticks: Option<PyReadonlyArray1<'py, u32>>,
     acc: Option<PyReadonlyArray2<'py, T>>,
@@ -549,6 +615,7 @@ fn update<'py, T: Real + numpy::Element>(
 ) -> PyResult<Updated<'py, T>> {
     let Arrays {
         gyr,
+        counts,
         t,
         ticks,
         acc,
@@ -558,7 +625,30 @@ fn update<'py, T: Real + numpy::Element>(
     if !rest.is_empty() {
         return Err(PyValueError::new_err("gyr must have shape (N, 3)"));
     }
-    let n = rows.len();
+    let input = match (&counts, session.scale) {
+        (None, None) => Input::Rows(rows),
+        (Some(c), Some(scale)) if rows.is_empty() => {
+            let (c, rest) = c.as_slice()?.as_chunks::<3>();
+            if !rest.is_empty() {
+                return Err(PyValueError::new_err("counts must have shape (N, 3)"));
+            }
+            Input::Counts(c, scale)
+        }
+        (Some(_), None) => {
+            return Err(PyValueError::new_err(
+                "counts need a stream made with count_scale",
+            ))
+        }
+        _ => {
+            return Err(PyValueError::new_err(
+                "a stream made with count_scale takes int16 counts",
+            ))
+        }
+    };
+    let n = match &input {
+        Input::Rows(r) => r.len(),
+        Input::Counts(c, _) => c.len(),
+    };
     let accel = match &acc {
         Some(a) => {
             let (r, rest) = a.as_slice()?.as_chunks::<3>();
@@ -614,7 +704,7 @@ fn update<'py, T: Real + numpy::Element>(
         let mut out = vec![[T::ZERO; 4]; n];
         let mut flags = if mask { vec![false; n] } else { Vec::new() };
         let m = if mask { Some(&mut flags[..]) } else { None };
-        let result = session.update(rows, &aux, seconds, tick_slice, &mut out, m);
+        let result = session.update(&input, &aux, seconds, tick_slice, &mut out, m);
         (out, flags, result)
     });
     let refused = result
@@ -638,7 +728,8 @@ impl NativeStream {
     /// See `quatprop.Stream`; arguments already validated by the Python layer.
     #[new]
     #[pyo3(signature = (precision, period, timestamps, tick_hz, tick_bits, scheme, stabilizer, every, input,
-        coning, kahan, q0, mask, remap, matrix, bias, estimator, calibration, interval_mean, group_delay))]
+        coning, kahan, q0, mask, remap, matrix, bias, estimator, calibration, interval_mean, group_delay,
+        count_scale))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         precision: &str,
@@ -661,6 +752,7 @@ impl NativeStream {
         calibration: Option<CalibrationArgs>,
         interval_mean: bool,
         group_delay: f64,
+        count_scale: Option<(bool, f64)>,
     ) -> PyResult<Self> {
         let args = StreamArgs {
             period,
@@ -681,6 +773,7 @@ impl NativeStream {
             calibration,
             interval_mean,
             group_delay,
+            count_scale,
         };
         let made = match precision {
             "f32" => Sessions::F32(Session::new(&args)?),
@@ -699,7 +792,7 @@ impl NativeStream {
     }
 
     /// Rows of f32 samples into an f32 stream.
-    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None))]
+    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None, counts=None))]
     #[allow(clippy::too_many_arguments)]
     fn update_f32<'py>(
         &mut self,
@@ -709,11 +802,13 @@ impl NativeStream {
         ticks: Option<PyReadonlyArray1<'py, u32>>,
         acc: Option<PyReadonlyArray2<'py, f32>>,
         temperature: Option<PyReadonlyArray1<'py, f32>>,
+        counts: Option<PyReadonlyArray2<'py, i16>>,
     ) -> PyResult<Updated<'py, f32>> {
         match &mut self.now {
             Sessions::F32(s) => {
                 let arrays = Arrays {
                     gyr,
+                    counts,
                     t,
                     ticks,
                     acc,
@@ -726,7 +821,7 @@ impl NativeStream {
     }
 
     /// Rows of f64 samples into an f64 stream.
-    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None))]
+    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None, counts=None))]
     #[allow(clippy::too_many_arguments)]
     fn update_f64<'py>(
         &mut self,
@@ -736,11 +831,13 @@ impl NativeStream {
         ticks: Option<PyReadonlyArray1<'py, u32>>,
         acc: Option<PyReadonlyArray2<'py, f64>>,
         temperature: Option<PyReadonlyArray1<'py, f64>>,
+        counts: Option<PyReadonlyArray2<'py, i16>>,
     ) -> PyResult<Updated<'py, f64>> {
         match &mut self.now {
             Sessions::F64(s) => {
                 let arrays = Arrays {
                     gyr,
+                    counts,
                     t,
                     ticks,
                     acc,

@@ -60,7 +60,9 @@ def test_reader_gives_the_layout_in_float64(trial):
 def test_start_points_every_5_s_inside_the_movement(trial):
     starts = bm.start_points(trial.movement, trial.fs)
     # 1429 + round(j · 5 s · 2000/7 Hz): 0, 1428.57… → 1429, 2857.14… → 2857, … up to the last sample (19142)
-    expected = 1429 + np.array([0, 1429, 2857, 4286, 5714, 7143, 8571, 10000, 11429, 12857, 14286, 15714, 17143])
+    expected = 1429 + np.array(
+        [0, 1429, 2857, 4286, 5714, 7143, 8571, 10000, 11429, 12857, 14286, 15714, 17143]
+    )
     np.testing.assert_array_equal(starts, expected)
 
 

@@ -277,3 +277,26 @@ def test_timing_is_kept_between_calls(size):
     whole, _ = quatprop.integrate(gyr, t=t, **options)
     q, _ = chunked(quatprop.Stream(timestamps=True, **options), gyr, size, t=t)
     assert q.tobytes() == whole.tobytes()
+
+
+def test_counts_through_the_count_scale_are_the_scaled_rates_and_rails_are_counted():
+    """int16 counts with count_scale give the bits of the same counts times the scale (rounded once to
+    the precision, as the core does), and a count at a rail is counted as saturated."""
+    rng = np.random.default_rng(5)
+    counts = rng.integers(-3000, 3000, size=(500, 3)).astype(np.int16)
+    counts[[10, 20]] = [32767, 0, 0]
+    counts[30] = [0, -32768, 5]
+    scale = quatprop.CountScale(full_scale_dps=2000.0)
+    s = quatprop.Stream(dt=1e-3, count_scale=scale, precision="f32")
+    q = s.update(counts)
+    k = np.float32(np.radians(2000.0) / 32768.0)
+    rates = counts.astype(np.float32) * k
+    q_rates = quatprop.integrate(rates, dt=1e-3, precision="f32")
+    assert q.tobytes() == q_rates.tobytes()
+    assert s.saturated == 3
+    with pytest.raises(TypeError, match="integer"):
+        s.update(rates)
+    with pytest.raises(ValueError, match="exactly one"):
+        quatprop.Stream(dt=1e-3, count_scale=quatprop.CountScale())
+    with pytest.raises(ValueError, match="InvalidScale"):
+        quatprop.Stream(dt=1e-3, count_scale=quatprop.CountScale(sensitivity=-131.0))

@@ -52,7 +52,8 @@ impl<T: Real> FixedBias<T> {
 /// **Stillness.** Samples are taken in windows of `window` samples. A window is *still* when every sample
 /// in it, minus the current bias estimate, stays within `gate` (rad/s) on every axis and none is saturated;
 /// with [`BiasEstimator::with_accel_gate`], also every acceleration sample within that gate of the window's
-/// first, on every axis. A moving or saturated sample aborts the window: nothing is learned from it.
+/// first, on every axis. A moving or saturated sample aborts the window: nothing is learned from it (nor
+/// from a window whose mean overflows, with a gate too wide for the numbers given).
 ///
 /// **Learning.** The mean of a still window measures the bias, the sensor's noise averaged over the window;
 /// its standard error comes from the window's own spread. The first still window sets the estimate. A

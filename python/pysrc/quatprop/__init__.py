@@ -33,6 +33,7 @@ __all__ = [
     "calibrate",
     "RefusedSample",
     "BiasEstimator",
+    "CountScale",
     "to_euler_zyx",
     "from_euler_zyx",
     "to_euler_zxz",
@@ -138,6 +139,28 @@ class BiasEstimator:
                 opt(self.accel_gate), opt(self.temperature_span))
 
 
+@dataclass(frozen=True)
+class CountScale:
+    """The scale of a 16-bit gyro (the core's ``frontend::CountScale``): raw counts → rad/s, and a count at
+    a rail (-32768 or 32767) on any axis marks the sample saturated (counted in :attr:`Stream.saturated`).
+
+    Give exactly one: ``full_scale_dps`` (±FS °/s spans the 16-bit range, one count = FS/32768 °/s: the
+    ICM-426xx and BMI088 convention) or ``sensitivity`` (counts per °/s as a datasheet prints it, e.g. 131
+    for the MPU-6050's ±250 °/s). The scale per count is formed in float64 and rounded once to the
+    stream's precision; each rate is that times the count, bit for bit the Rust core and the C API.
+    """
+
+    full_scale_dps: Optional[float] = None
+    sensitivity: Optional[float] = None
+
+    def _native(self):
+        if (self.full_scale_dps is None) == (self.sensitivity is None):
+            raise ValueError("CountScale: give exactly one of full_scale_dps and sensitivity")
+        if self.full_scale_dps is not None:
+            return (True, float(self.full_scale_dps))
+        return (False, float(self.sensitivity))
+
+
 _DTYPES = {"f32": np.float32, "f64": np.float64}
 
 
@@ -200,6 +223,18 @@ def _array(name: str, value, dtype, ndim: int, last: Optional[int] = None) -> np
     return np.ascontiguousarray(a, dtype=dtype)
 
 
+def _counts(value) -> np.ndarray:
+    """(N, 3) raw gyro counts as int16 (integers in -32768 .. 32767)."""
+    a = np.asarray(value)
+    if a.dtype.kind not in "iu":
+        raise TypeError(f"a stream with count_scale takes integer counts, got dtype {a.dtype}")
+    if a.ndim != 2 or a.shape[-1] != 3:
+        raise ValueError(f"counts must have shape (N, 3), got {a.shape}")
+    if a.size and (a.min() < -32768 or a.max() > 32767):
+        raise ValueError("counts must be in -32768 .. 32767 (16-bit)")
+    return np.ascontiguousarray(a, dtype=np.int16)
+
+
 def _stabilizer(stabilizer: str) -> Tuple[str, int]:
     if not isinstance(stabilizer, str):
         raise TypeError(f"stabilizer must be a string, got {type(stabilizer).__name__}")
@@ -247,6 +282,8 @@ _OPTIONS_DOC = """
             ``"interval_mean"``, the mean rate over the interval that ends at its timestamp, integrated
             exactly as the increment ``ω·dt`` by ``input="delta_angles"`` (required) with its ``coning``
             correction. The front end (calibration, alignment, bias) applies to these rates first.
+        count_scale: a :class:`CountScale`: ``gyr`` is then raw int16 counts (N, 3), scaled first (before
+            the calibration); a count at a rail marks its sample saturated.
         group_delay: seconds the samples lag the motion (a low-pass filter's group delay; 0 by default):
             each returned attitude is the propagated one (at ``t − group_delay``) carried forward by
             ``group_delay`` at the last accepted sample's rate.
@@ -303,8 +340,12 @@ class Stream:
         on_refused: str = "raise",
         sample: str = "instant",
         group_delay: float = 0.0,
+        count_scale: Optional[CountScale] = None,
     ) -> None:
         self._precision = None if precision is None else _choice("precision", precision, tuple(_DTYPES))
+        if count_scale is not None and not isinstance(count_scale, CountScale):
+            raise TypeError(f"count_scale must be a quatprop.CountScale, got {type(count_scale).__name__}")
+        self._counts = count_scale is not None
         sample = _choice("sample", sample, SAMPLES)
         interval_mean = sample == "interval_mean"
         if interval_mean and input != "delta_angles":
@@ -316,6 +357,8 @@ class Stream:
             raise ValueError(f"group_delay must be a finite number of seconds >= 0, got {group_delay!r}")
         if group_delay > 0.0 and input == "delta_angles" and not interval_mean:
             raise ValueError('group_delay needs rates: not with raw delta angles (use sample="interval_mean")')
+        if self._counts and input == "delta_angles" and not interval_mean:
+            raise ValueError("count_scale gives rates: not with raw delta angles")
         # Rates (rad/s) come in unless the rows are raw increments.
         rates_in = input != "delta_angles" or interval_mean
         scheme = _choice("scheme", scheme, SCHEMES)
@@ -401,6 +444,7 @@ class Stream:
             cal,
             interval_mean,
             group_delay,
+            None if count_scale is None else count_scale._native(),
         )
         # Made now, so a bad option fails here; remade in f32 if the first samples decide so.
         self._native = _native.NativeStream(self._precision or "f64", *self._args)
@@ -437,8 +481,14 @@ class Stream:
         """
         if self._precision is None:
             self._decide("f32" if np.asarray(gyr).dtype == np.float32 else "f64")
-        gyr = _array("gyr", gyr, _DTYPES[self._precision], 2, 3)
-        n = gyr.shape[0]
+        counts = None
+        if self._counts:
+            counts = _counts(gyr)
+            gyr = np.empty((0, 3), dtype=_DTYPES[self._precision])
+            n = counts.shape[0]
+        else:
+            gyr = _array("gyr", gyr, _DTYPES[self._precision], 2, 3)
+            n = gyr.shape[0]
         t_arr = None
         tick_arr = None
         if (t is not None) != (self._time == "t") or (ticks is not None) != (self._time == "ticks"):
@@ -462,7 +512,7 @@ class Stream:
         acc_arr = None if acc is None else _array("acc", acc, dtype, 2, 3)
         temp_arr = None if temperature is None else _array("temperature", temperature, dtype, 1)
         native = self._native.update_f32 if self._precision == "f32" else self._native.update_f64
-        q, mask, refused = native(gyr, t_arr, tick_arr, acc_arr, temp_arr)
+        q, mask, refused = native(gyr, t_arr, tick_arr, acc_arr, temp_arr, counts)
         if refused is not None:
             raise RefusedSample(*refused)
         if self._mask:
@@ -494,8 +544,10 @@ class Stream:
     def lost_angle(self) -> np.ndarray:
         """The sum of the refused delta angles ``[x, y, z]`` (rad, body axes): the rotation that refused
         increments took with them (``input="delta_angles"``; a refused rate sample loses no time, its
-        interval goes into the next one, but a refused increment's angle is not integrated). NaN or
-        infinite increments are not counted: their angle is unknown."""
+        interval goes into the next one, but a refused increment's angle is not integrated; with
+        ``sample="interval_mean"`` the increment is the rate times its interval, not counted when the
+        interval itself was refused, e.g. a timestamp going back). NaN or infinite increments are not
+        counted: their angle is unknown."""
         return np.array(self._native.lost_angle())
 
     @property
@@ -543,6 +595,7 @@ def integrate(
     temperature=None,
     sample: str = "instant",
     group_delay: float = 0.0,
+    count_scale: Optional[CountScale] = None,
 ):
     """Integrates body-frame gyro samples into attitude quaternions, bit for bit as the Rust library.
 
@@ -603,6 +656,7 @@ def integrate(
         on_refused=on_refused,
         sample=sample,
         group_delay=group_delay,
+        count_scale=count_scale,
     )
     return stream.update(gyr, t, ticks=ticks, acc=acc, temperature=temperature)
 

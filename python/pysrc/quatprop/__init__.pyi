@@ -58,6 +58,14 @@ class BiasEstimator:
         temperature_span: Optional[float] = None,
     ) -> None: ...
 
+class CountScale:
+    """A 16-bit gyro's scale: counts → rad/s (exactly one of full_scale_dps, sensitivity); a count at a rail
+    marks the sample saturated."""
+
+    full_scale_dps: Optional[float]
+    sensitivity: Optional[float]
+    def __init__(self, full_scale_dps: Optional[float] = None, sensitivity: Optional[float] = None) -> None: ...
+
 class Calibration:
     """A gyro's calibration in the sensor's axes: ω = M · (s ⊙ (r − o)) (Fusion's model_inertial)."""
 
@@ -98,6 +106,7 @@ class Stream:
         on_refused: Literal["raise", "mask"] = "raise",
         sample: SampleMeaning = "instant",
         group_delay: float = 0.0,
+        count_scale: Optional[CountScale] = None,
     ) -> None: ...
     def update(
         self,
@@ -148,6 +157,7 @@ def integrate(
     temperature: Optional[npt.ArrayLike] = None,
     sample: SampleMeaning = "instant",
     group_delay: float = 0.0,
+    count_scale: Optional[CountScale] = None,
 ) -> FloatArray:
     """(N, 3) body rates (rad/s; increments in rad for delta_angles) → (N, 4) attitudes [w, x, y, z]
     (scalar first, Hamilton, body to reference) after each sample, in the dtype of `precision`.
@@ -178,6 +188,7 @@ def integrate(
     temperature: Optional[npt.ArrayLike] = None,
     sample: SampleMeaning = "instant",
     group_delay: float = 0.0,
+    count_scale: Optional[CountScale] = None,
 ) -> Tuple[FloatArray, npt.NDArray[np.bool_]]:
     """As above; a refused sample is skipped (state kept, interval carried into the next sample) and
     flagged True in the returned (N,) boolean mask."""
