@@ -16,7 +16,8 @@
 //!   arbitrary samples with NaN and saturated ones: `Err` ⇒ unchanged; `Ok` ⇒ output = sample − bias
 //!   before it, and a saturated sample never changes the estimate. With changes switched off
 //!   (`with_change(MAX)`) the estimate follows an independent implementation of the documented rule
-//!   (stillness windows, running mean over `memory` windows) bit for bit. With changes on, and optionally an
+//!   (stillness windows, running mean over `memory` windows; a window whose mean overflows teaches
+//!   nothing) bit for bit. With changes on, and optionally an
 //!   acceleration gate and the temperature model fed arbitrary accelerations and temperatures (NaN and
 //!   infinities among them): a NaN or infinite one is refused as `NonFiniteAux` with the estimator
 //!   unchanged; otherwise the output is the sample minus `bias_at(temperature)` from before, bit for bit,
@@ -384,14 +385,23 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
             m.sum = Vec3::new(m.sum.x + d.x, m.sum.y + d.y, m.sum.z + d.z);
             m.count += 1;
             if m.count >= m.window {
-                m.learned = (m.learned + 1).min(m.memory);
-                let n = T::of_i32(m.window as i32) * T::of_i32(m.learned as i32);
-                let inv = T::ONE / n;
-                m.bias = Vec3::new(
-                    m.bias.x + m.sum.x * inv,
-                    m.bias.y + m.sum.y * inv,
-                    m.bias.z + m.sum.z * inv,
+                // A window whose mean (added to the estimate) overflows teaches nothing.
+                let w = T::ONE / T::of_i32(m.window as i32);
+                let probe = Vec3::new(
+                    m.bias.x + m.sum.x * w,
+                    m.bias.y + m.sum.y * w,
+                    m.bias.z + m.sum.z * w,
                 );
+                if probe.is_finite() {
+                    m.learned = (m.learned + 1).min(m.memory);
+                    let n = T::of_i32(m.window as i32) * T::of_i32(m.learned as i32);
+                    let inv = T::ONE / n;
+                    m.bias = Vec3::new(
+                        m.bias.x + m.sum.x * inv,
+                        m.bias.y + m.sum.y * inv,
+                        m.bias.z + m.sum.z * inv,
+                    );
+                }
                 m.sum = Vec3::ZERO;
                 m.count = 0;
             }
