@@ -104,7 +104,7 @@ def quatprop_method(
 
     def run(gyr: np.ndarray, acc: np.ndarray, fs: float, estimate_bias: bool) -> np.ndarray:
         bias = quatprop.BiasEstimator(**{"window": int(round(fs)), **estimator}) if estimate_bias else None
-        with_acc = {"acc": acc} if use_acc else {}
+        with_acc = {"acc": acc} if use_acc and estimate_bias else {}  # acc feeds the estimator only
         q = quatprop.integrate(gyr, dt=1.0 / fs, bias=bias, **with_acc, **integrate_kwargs)
         return np.asarray(q, dtype=np.float64)
 
@@ -129,6 +129,44 @@ QUATPROP_METHODS = [
     quatprop_method("expmap+history f32", scheme="expmap", input="history", precision="f32"),
     quatprop_method("expmap+hold f64", scheme="expmap", input="hold", precision="f64"),
     quatprop_method("rk4+linear f64", scheme="rk4", input="linear", precision="f64"),
+    # What a sample means (SampleTiming): BROAD's gyro lags the optical reference by about one sample.
+    quatprop_method(
+        "expmap+history f32, group delay 3.5 ms",
+        timing="ω_k is the rate at t_k − 3.5 ms (one sample); History integrates to there and each attitude "
+        "is carried forward by 3.5 ms at ω_k",
+        scheme="expmap", input="history", precision="f32", group_delay=3.5e-3,
+    ),
+    quatprop_method(
+        "expmap+interval means (two-sample coning) f64",
+        timing="ω_k is the mean rate over [t_{k−1}, t_k]: the increment ω_k·dt, with the two-sample coning "
+        "correction",
+        scheme="expmap", input="delta_angles", coning="two_sample", sample="interval_mean", precision="f64",
+    ),
+    quatprop_method(
+        "expmap+interval means f64, group delay 1.75 ms",
+        timing="ω_k is the mean rate over [t_{k−1}, t_k] − 1.75 ms (half a sample): the increment ω_k·dt, "
+        "each attitude carried forward by 1.75 ms",
+        scheme="expmap", input="delta_angles", coning="two_sample", sample="interval_mean", precision="f64",
+        group_delay=1.75e-3,
+    ),
+    # The accelerometer tells rest from motion and informs the bias in motion (never the attitude).
+    quatprop_method(
+        "expmap+history f32, accelerometer rest gate",
+        bias_estimator={"accel_gate": 0.5}, use_acc=True,
+        scheme="expmap", input="history", precision="f32",
+    ),
+    quatprop_method(
+        "expmap+history f32, motion bias",
+        bias_estimator={"motion": True}, use_acc=True,
+        scheme="expmap", input="history", precision="f32",
+    ),
+    quatprop_method(
+        "expmap+history f64, motion bias, group delay 3.5 ms",
+        timing="ω_k is the rate at t_k − 3.5 ms (one sample); History integrates to there and each attitude "
+        "is carried forward by 3.5 ms at ω_k",
+        bias_estimator={"motion": True}, use_acc=True,
+        scheme="expmap", input="history", precision="f64", group_delay=3.5e-3,
+    ),
 ]
 
 

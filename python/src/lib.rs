@@ -19,7 +19,7 @@ use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
-    SampleTiming, TickClock,
+    MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
@@ -279,6 +279,8 @@ struct Session<T: Real> {
     alignment: Option<Alignment<T>>,
     fixed: Option<FixedBias<T>>,
     estimator: Option<BiasEstimator<T>>,
+    /// The residual bias in motion, from the accelerometer, after the estimator.
+    motion: Option<MotionBias<T>>,
     refused: u64,
     /// The sum of the refused delta angles (rad, body axes; finite ones only): rotation not integrated.
     lost: [f64; 3],
@@ -340,7 +342,7 @@ impl<T: Real> Session<T> {
         let (fixed, estimator) = match (args.bias, args.estimator) {
             (None, None) => (None, None),
             (Some(b), None) => (Some(FixedBias::new(vec3(b)).map_err(config_error)?), None),
-            (None, Some((window, gate, memory, initial, change, accel_gate, span))) => {
+            (None, Some((window, gate, memory, initial, change, accel_gate, span, _))) => {
                 let mut e = BiasEstimator::from_samples(window, T::from_f64(gate), memory)
                     .map_err(config_error)?;
                 if let Some(c) = change {
@@ -373,6 +375,17 @@ impl<T: Real> Session<T> {
         let timing = timing
             .with_group_delay(T::from_f64(args.group_delay))
             .map_err(config_error)?;
+        let motion = match (args.estimator, &clock) {
+            (Some((.., true)), Clock::Fixed(_)) => {
+                Some(MotionBias::new(args.period.unwrap_or(f64::NAN)).map_err(config_error)?)
+            }
+            (Some((.., true)), _) => {
+                return Err(PyValueError::new_err(
+                    "the motion bias estimator needs a fixed period (dt=)",
+                ))
+            }
+            _ => None,
+        };
         let scale = match args.count_scale {
             Some((true, fs)) => Some(CountScale::full_scale_dps(fs).map_err(config_error)?),
             Some((false, sensitivity)) => {
@@ -388,6 +401,7 @@ impl<T: Real> Session<T> {
             alignment,
             fixed,
             estimator,
+            motion,
             refused: 0,
             lost: [0.0; 3],
             timing,
@@ -426,8 +440,24 @@ impl<T: Real> Session<T> {
         if let Some(b) = &self.fixed {
             s = b.apply(s);
         }
+        let mut aux = aux.at(k);
+        if let (Some(a), Some(acc)) = (&self.alignment, aux.accel) {
+            aux.accel = Some(a.apply(GyroSample::new(acc)).rate); // the same axes as the rates
+        }
         if let Some(e) = self.estimator.as_mut() {
-            s = e.update_with(s, aux.at(k)).unwrap_or(s);
+            let rest = e.bias();
+            s = e.update_with(s, aux).unwrap_or(s);
+            if let Some(m) = self.motion.as_mut() {
+                if e.bias() != rest {
+                    m.at_rest(); // a window learned: the rest estimate holds, the residual restarts
+                }
+                let residual = m.bias();
+                if let (Some(acc), Clock::Fixed(p)) = (aux.accel, &self.clock) {
+                    // A refused sample (NaN) leaves it unchanged; the propagator refuses the sample too.
+                    let _ = m.update(s.rate, acc, p.period());
+                }
+                s.rate = s.rate - residual;
+            }
         }
         s
     }
@@ -467,7 +497,7 @@ impl<T: Real> Session<T> {
         mut mask: Option<&mut [bool]>,
     ) -> Result<(), Refused> {
         let n = out.len();
-        let estimator = self.estimator;
+        let (estimator, motion) = (self.estimator, self.motion);
         let processed;
         let (rows, clipped): (&[[T; 3]], &[bool]) = match input {
             Input::Rows(r) if !self.has_front_end() => (r, &[]),
@@ -505,7 +535,7 @@ impl<T: Real> Session<T> {
                 self.refused += 1;
                 // The estimator has seen the whole call: back to where the refused sample left it.
                 if estimator.is_some() {
-                    self.estimator = estimator;
+                    (self.estimator, self.motion) = (estimator, motion);
                     self.front_end(input, r.index + 1, aux);
                 }
             }
@@ -545,7 +575,8 @@ struct StreamArgs {
 }
 
 /// A bias estimator as Python passes it: window (samples), gate (rad/s), memory (windows), initial bias
-/// (rad/s), change threshold (rad/s; None: the core's default), acceleration gate, temperature span.
+/// (rad/s), change threshold (rad/s; None: the core's default), acceleration gate, temperature span, and
+/// whether the residual bias is also learned in motion from the accelerometer (`MotionBias`).
 type EstimatorArgs = (
     u32,
     f64,
@@ -554,6 +585,7 @@ type EstimatorArgs = (
     Option<f64>,
     Option<f64>,
     Option<f64>,
+    bool,
 );
 
 /// A calibration as Python passes it: offset (rad/s), sensitivity, misalignment (rows).

@@ -300,3 +300,21 @@ def test_counts_through_the_count_scale_are_the_scaled_rates_and_rails_are_count
         quatprop.Stream(dt=1e-3, count_scale=quatprop.CountScale())
     with pytest.raises(ValueError, match="InvalidScale"):
         quatprop.Stream(dt=1e-3, count_scale=quatprop.CountScale(sensitivity=-131.0))
+
+
+@pytest.mark.parametrize("size", [1, 7, 400])
+def test_the_motion_bias_state_is_kept_between_calls(size):
+    """The residual bias learned in motion (BiasEstimator(motion=True), the accelerometer in the gyro's
+    axes): chunks give the bits of one call, alignment and a refused sample included."""
+    gyr = coning()
+    gyr[[300, 1500]] = np.nan
+    acc = companions()["acc"]
+    options = dict(precision="f32", alignment="PyNxPz", on_refused="mask",
+                   bias=quatprop.BiasEstimator(window=100, gate=0.05, motion=True))
+    whole, _ = quatprop.integrate(gyr, dt=1e-3, acc=acc, **options)
+    q, _ = chunked(quatprop.Stream(dt=1e-3, **options), gyr, size, acc=acc)
+    assert q.tobytes() == whole.tobytes()
+    plain, _ = quatprop.integrate(gyr, dt=1e-3, **options)  # without acc: the rest estimate alone
+    assert plain.tobytes() != whole.tobytes()
+    with pytest.raises(ValueError, match="fixed period"):
+        quatprop.Stream(timestamps=True, bias=quatprop.BiasEstimator(window=10, gate=0.05, motion=True))

@@ -7,6 +7,7 @@
 //! | [`Calibration`] | a reading in the sensor's own (non-orthogonal, mis-scaled) axes | the calibrated rate: offset, per-axis sensitivity, misalignment |
 //! | [`Alignment`] | a sample in sensor axes | the same sample in body axes (one of the 24 [`AxisRemap`]s, or a rotation matrix) |
 //! | [`FixedBias`], [`BiasEstimator`] | a biased sample | the sample minus the bias (fixed, or learned while the body is still) |
+//! | [`MotionBias`] | a sample corrected at rest, and the accelerometer | the residual bias learned in motion (VQF's motion bias estimation; the accelerometer never touches the attitude) |
 //! | [`FixedPeriod`] | a sample period given once | the `dt` of each sample, summing to `k·period` exactly |
 //! | [`TickClock`] | the sensor's own timestamps (integer ticks, wrapping) | the `dt` of each sample, exact, with gaps counted |
 //! | [`SampleTiming`] | what a sample means in time: the rate at its timestamp or the mean over the interval before it, and a group delay | angle increments for interval means; the attitude carried forward by the delay |
@@ -38,6 +39,7 @@
 mod alignment;
 mod bias;
 mod calibration;
+mod motion_bias;
 mod scale;
 mod time;
 mod timing;
@@ -45,6 +47,7 @@ mod timing;
 pub use alignment::{Alignment, AxisRemap, ROTATION_TOLERANCE};
 pub use bias::{Aux, BiasEstimator, FixedBias};
 pub use calibration::Calibration;
+pub use motion_bias::MotionBias;
 pub use scale::CountScale;
 pub use time::{FixedPeriod, TickClock};
 pub use timing::SampleTiming;

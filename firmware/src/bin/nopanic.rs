@@ -4,7 +4,8 @@
 //! stabilizer (four zero-sized, the run-time `StabilizerKind`) × accumulator (`Plain`, `Kahan`): see
 //! `quatprop_firmware::configs`. The panic handler is the `panic-never` crate's, which references a symbol
 //! that does not exist, so if any panic path is still reachable after optimization the link fails. The
-//! sensor front end (`CountScale`, `Calibration`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator`, `FixedPeriod`,
+//! sensor front end (`CountScale`, `Calibration`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator` (with its
+//! accelerometer gate and temperature model), `MotionBias`, `SampleTiming`, `FixedPeriod`,
 //! `TickClock`) is called once, with opaque inputs, in every image; `start` and the FIFO bursts
 //! (`push_burst` at a fixed period, `push_burst_timed` with sensor ticks) for every input model ×
 //! accumulator through the run-time `SchemeKind` × `StabilizerKind` (whose dispatch reaches every scheme's
@@ -31,7 +32,8 @@ use cortex_m_rt::entry;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
 use quatprop::config::{AccumulatorKind, Config, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
+    MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::{ConingKind, TwoSample};
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
@@ -161,12 +163,42 @@ fn front_end() {
         black_box(b.apply(s));
     }
     if let Ok(e) = BiasEstimator::<f32>::new(black_box(1.0), black_box(1.0e-3), black_box(0.05)) {
-        if let Ok(mut e) = e.with_initial(black_box(Vec3::new(0.0, 0.0, 0.01))) {
+        let e = e
+            .with_change(black_box(5.0e-4))
+            .and_then(|e| e.with_accel_gate(black_box(0.5)))
+            .and_then(|e| e.with_temperature_model(black_box(0.5)));
+        if let Ok(mut e) = e.and_then(|e| e.with_initial(black_box(Vec3::new(0.0, 0.0, 0.01)))) {
+            let aux = Aux {
+                accel: black_box(Some(Vec3::new(0.0, 0.0, 9.81))),
+                temperature: black_box(Some(25.0)),
+            };
             for _ in 0..black_box(3) {
                 let _ = black_box(e.update(black_box(s)));
+                let _ = black_box(e.update_with(black_box(s), aux));
             }
-            black_box((e.bias(), e.is_learned()));
+            black_box((
+                e.bias(),
+                e.is_learned(),
+                e.bias_at(black_box(30.0)),
+                e.temperature_slope(),
+            ));
         }
+    }
+    if let Ok(mut m) = MotionBias::<f32>::new(black_box(1.0e-3)) {
+        for _ in 0..black_box(3) {
+            let _ = black_box(m.update(
+                black_box(s.rate),
+                black_box(Vec3::new(0.1, 0.0, 9.8)),
+                1.0e-3,
+            ));
+        }
+        m.at_rest();
+        black_box(m.bias());
+    }
+    let timing = SampleTiming::<f32>::interval_mean().with_group_delay(black_box(2.0e-3));
+    if let Ok(t) = timing {
+        black_box(t.increment(black_box(s), black_box(1.0e-3)));
+        black_box(t.ahead(black_box(Quat::IDENTITY), black_box(s.rate)));
     }
     if let Ok(mut period) = FixedPeriod::<f32>::new(black_box(1.0e-3)) {
         black_box(period.next_dt());

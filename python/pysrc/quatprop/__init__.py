@@ -113,6 +113,11 @@ class BiasEstimator:
             (e.g. 0.5 m/s²); None: rest judged by the rates alone.
         temperature_span: the temperature spread (standard deviation, the unit of ``temperature``) from
             which the bias(T) line is applied; None: no temperature model.
+        motion: also learn the residual bias in motion from the accelerometer (the core's
+            ``frontend::MotionBias``: VQF's motion bias estimation, on the rates corrected at rest; it
+            restarts at zero whenever a still window is learned). Needs ``acc`` (in the gyro's axes,
+            m/s² or any unit) and a fixed period (``dt=``). The accelerometer informs the bias only; the
+            attitude is the gyro's.
     """
 
     window: int
@@ -122,6 +127,7 @@ class BiasEstimator:
     change: Optional[float] = None
     accel_gate: Optional[float] = None
     temperature_span: Optional[float] = None
+    motion: bool = False
 
     def _native(self):
         initial = None
@@ -136,7 +142,7 @@ class BiasEstimator:
         def opt(v):
             return None if v is None else float(v)
         return (int(self.window), float(self.gate), int(self.memory), initial, opt(self.change),
-                opt(self.accel_gate), opt(self.temperature_span))
+                opt(self.accel_gate), opt(self.temperature_span), bool(self.motion))
 
 
 @dataclass(frozen=True)

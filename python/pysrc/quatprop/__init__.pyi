@@ -47,6 +47,7 @@ class BiasEstimator:
     change: Optional[float]
     accel_gate: Optional[float]
     temperature_span: Optional[float]
+    motion: bool
     def __init__(
         self,
         window: int,
@@ -56,6 +57,7 @@ class BiasEstimator:
         change: Optional[float] = None,
         accel_gate: Optional[float] = None,
         temperature_span: Optional[float] = None,
+        motion: bool = False,
     ) -> None: ...
 
 class CountScale:
