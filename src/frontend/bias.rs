@@ -53,7 +53,7 @@ impl<T: Real> FixedBias<T> {
 /// in it, minus the current bias estimate, stays within `gate` (rad/s) on every axis and none is saturated;
 /// with [`BiasEstimator::with_accel_gate`], also every acceleration sample within that gate of the window's
 /// first, on every axis. A moving or saturated sample aborts the window: nothing is learned from it (nor
-/// from a window whose mean overflows, with a gate too wide for the numbers given).
+/// from a window whose numbers overflow the running means, with gates too wide for the numbers given).
 ///
 /// **Learning.** The mean of a still window measures the bias, the sensor's noise averaged over the window;
 /// its standard error comes from the window's own spread. The first still window sets the estimate. A
@@ -440,7 +440,12 @@ impl<T: Real> BiasEstimator<T> {
             self.temperature_count += 1;
         }
         if self.count >= self.window {
+            let before = *self;
             self.learn_window();
+            if !self.is_finite() {
+                // Numbers so large that the running means overflowed: nothing learned from this window.
+                *self = before;
+            }
             self.restart_window();
         }
         Ok(out)
@@ -453,6 +458,24 @@ impl<T: Real> BiasEstimator<T> {
         self.temperature_sum = T::ZERO;
         self.temperature_count = 0;
         self.accel_reference = None;
+    }
+
+    /// Every learned quantity finite (the window sums are reset after each window).
+    fn is_finite(&self) -> bool {
+        let finite = |t: Option<T>| t.is_none_or(Real::is_finite);
+        let candidate = self
+            .candidate
+            .is_none_or(|c| c.bias.is_finite() && c.variance.is_finite() && finite(c.temperature));
+        let thermal = self.thermal.is_none_or(|th| {
+            th.weight.is_finite()
+                && th.sum_t.is_finite()
+                && th.sum_tt.is_finite()
+                && th.sum_b.is_finite()
+                && th.sum_tb.is_finite()
+                && th.slope.is_finite()
+                && finite(th.origin)
+        });
+        self.bias.is_finite() && finite(self.bias_temperature) && candidate && thermal
     }
 
     /// A full still window: learned, held as a candidate change, or a change confirmed.

@@ -21,7 +21,9 @@
 //!   acceleration gate and the temperature model fed arbitrary accelerations and temperatures (NaN and
 //!   infinities among them): a NaN or infinite one is refused as `NonFiniteAux` with the estimator
 //!   unchanged; otherwise the output is the sample minus `bias_at(temperature)` from before, bit for bit,
-//!   and the estimate stays finite.
+//!   and the estimate stays finite. A `MotionBias` (any period) fed those outputs with the accelerations
+//!   and arbitrary `dt`: refused input (typed) leaves it unchanged, its estimate stays within ±2 °/s, and
+//!   `at_rest` zeroes it.
 //! - `FixedPeriod`: construction errors as documented; with refusals given back by `carry_over`, the
 //!   accepted `dt`s sum to `k·period` (k samples) within ½ ulp of the last `dt`, plus one ulp of each `dt`
 //!   handed out with a carried interval, plus `4ε²·period` per sample (rounding of the carry and of `lo`)
@@ -37,8 +39,8 @@
 
 use super::{assert_same_text, norm64, vec_bits, Bytes, Fz, RATE, SPECIAL, UNIT};
 use quatprop::frontend::{
-    Alignment, Aux, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, TickClock,
-    ROTATION_TOLERANCE,
+    Alignment, Aux, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, MotionBias,
+    TickClock, ROTATION_TOLERANCE,
 };
 use quatprop::{Error, GyroSample, Quat, Vec3};
 
@@ -424,6 +426,18 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
 /// The estimator with changes followed, optionally an acceleration gate and the temperature model, fed
 /// arbitrary samples, accelerations and temperatures: the invariants that hold whatever it learns.
 fn following<T: Fz>(b: &mut Bytes<'_>, mut est: BiasEstimator<T>) {
+    let period = f64_from(b, [1e-3, 1e-2, 2.5e-4, 3.5e-3]);
+    let mut motion = match MotionBias::<T>::new(period) {
+        Ok(m) => {
+            assert!(period > 0.0 && period.is_finite());
+            Some(m)
+        }
+        Err(e) => {
+            assert!(matches!(e, Error::NonFiniteStep | Error::NonPositiveStep));
+            assert!(!(period > 0.0 && period.is_finite()));
+            None
+        }
+    };
     if b.bool() {
         let gate: T = b.real(UNIT);
         let r = est.with_accel_gate(gate);
@@ -489,6 +503,34 @@ fn following<T: Fz>(b: &mut Bytes<'_>, mut est: BiasEstimator<T>) {
             est.is_learned() || !before.is_learned(),
             "forgot what it learned"
         );
+        // The residual in motion on the corrected rate: refused input leaves it unchanged; otherwise its
+        // estimate stays finite and within its ±2 °/s clip.
+        if let (Some(m), Some(a)) = (motion.as_mut(), accel) {
+            let dt: T = b.real(UNIT);
+            let kept = *m;
+            match m.update(out.rate, a, dt) {
+                Ok(()) => {
+                    let c = T::from_f64(2.0_f64.to_radians());
+                    let r = m.bias();
+                    assert!(r.x.abs() <= c && r.y.abs() <= c && r.z.abs() <= c, "{m:?}");
+                }
+                Err(e) => {
+                    assert!(matches!(
+                        e,
+                        Error::NonFiniteRate
+                            | Error::NonFiniteAux
+                            | Error::NonFiniteStep
+                            | Error::NonPositiveStep
+                            | Error::NonFiniteResult
+                    ));
+                    assert_same_text(m, &kept, &"refused input changed the motion bias");
+                }
+            }
+            if est.bias() != before.bias() {
+                m.at_rest();
+                assert_eq!(vec_bits(m.bias()), vec_bits(Vec3::<T>::ZERO));
+            }
+        }
     }
 }
 
