@@ -194,3 +194,29 @@ fn normalize_stays_within_its_documented_bound_after_a_large_step() {
         worst.1
     );
 }
+
+/// Found by `frontend` (f64): with a gate as wide as the numbers (f64::MAX), a confirmed change whose two windows
+/// (and temperatures) were near f64::MAX overflowed their mean, `(a + b)/2`, and the estimate became
+/// infinite; such a window now teaches nothing, and the estimate stays finite.
+#[test]
+fn numbers_that_overflow_the_running_means_teach_nothing() {
+    use quatprop::frontend::{Aux, BiasEstimator};
+    use quatprop::{GyroSample, Vec3};
+    let mut e = BiasEstimator::<f64>::from_samples(1, f64::MAX, 64)
+        .unwrap()
+        .with_temperature_model(0.8)
+        .unwrap();
+    let aux = Aux {
+        accel: None,
+        temperature: Some(1.7e308),
+    };
+    for rate in [1.0, 1.5e308, 1.5e308, 1.5e308] {
+        e.update_with(GyroSample::new(Vec3::new(rate, 0.0, 0.0)), aux)
+            .unwrap();
+        assert!(
+            e.bias().is_finite() && e.bias_at(1.7e308).is_finite(),
+            "{e:?}"
+        );
+    }
+    assert_eq!(e.bias(), Vec3::new(1.0, 0.0, 0.0)); // the change was never adopted
+}
