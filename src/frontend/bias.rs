@@ -397,6 +397,7 @@ impl<T: Real> BiasEstimator<T> {
     /// [`Error::NonFiniteRate`] for a NaN or infinite rate, [`Error::NonFiniteAux`] for a NaN or infinite
     /// acceleration or temperature (or one so far along the fitted line that the bias there overflows); the
     /// estimator is then unchanged.
+    #[inline]
     pub fn update_with(&mut self, s: GyroSample<T>, aux: Aux<T>) -> Result<GyroSample<T>, Error> {
         if !s.rate.is_finite() {
             return Err(Error::NonFiniteRate);
@@ -405,13 +406,16 @@ impl<T: Real> BiasEstimator<T> {
             return Err(Error::NonFiniteAux);
         }
         let used = match aux.temperature {
-            Some(t) => self.bias_at(t),
+            Some(t) => {
+                let used = self.bias_at(t);
+                if !used.is_finite() {
+                    // A temperature so far off the fitted line that the bias there overflows.
+                    return Err(Error::NonFiniteAux);
+                }
+                used
+            }
             None => self.bias,
         };
-        if !used.is_finite() {
-            // A temperature so far off the fitted line that the bias there overflows.
-            return Err(Error::NonFiniteAux);
-        }
         let d = s.rate - used;
         let out = GyroSample {
             rate: d,
@@ -429,7 +433,10 @@ impl<T: Real> BiasEstimator<T> {
             }
         }
         if !still {
-            self.restart_window();
+            if self.count > 0 {
+                // (An empty window has nothing to forget: in motion this is the common path.)
+                self.restart_window();
+            }
             return Ok(out);
         }
         self.sum += d;
@@ -440,17 +447,24 @@ impl<T: Real> BiasEstimator<T> {
             self.temperature_count += 1;
         }
         if self.count >= self.window {
-            let before = *self;
-            self.learn_window();
-            if !self.is_finite() {
-                // Numbers so large that the running means overflowed: nothing learned from this window.
-                *self = before;
-            }
-            self.restart_window();
+            self.close_window();
         }
         Ok(out)
     }
 
+    /// A full still window learned, and the next one started. Out of line: once per window, not per sample.
+    #[inline(never)]
+    fn close_window(&mut self) {
+        let before = *self;
+        self.learn_window();
+        if !self.is_finite() {
+            // Numbers so large that the running means overflowed: nothing learned from this window.
+            *self = before;
+        }
+        self.restart_window();
+    }
+
+    #[inline]
     fn restart_window(&mut self) {
         self.sum = Vec3::ZERO;
         self.sum_sq = Vec3::ZERO;
@@ -606,6 +620,7 @@ impl<T: Real> Aux<T> {
         temperature: None,
     };
 
+    #[inline]
     fn is_finite(&self) -> bool {
         self.accel.is_none_or(Vec3::is_finite) && self.temperature.is_none_or(Real::is_finite)
     }
