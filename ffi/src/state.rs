@@ -14,7 +14,8 @@ use crate::quatprop_sample_t;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
+    TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::InputModel;
@@ -54,12 +55,22 @@ pub enum Bias {
 }
 
 impl Bias {
+    /// The sample with the bias subtracted, nothing learned yet.
     #[inline(always)]
-    fn apply(&mut self, s: GyroSample<f32>) -> Result<GyroSample<f32>, Error> {
+    fn correct(&self, s: GyroSample<f32>) -> Result<GyroSample<f32>, Error> {
         match self {
             Bias::None => Ok(s),
             Bias::Fixed(b) => Ok(b.apply(s)),
-            Bias::Estimator(e) => e.update(s),
+            Bias::Estimator(e) => e.correct(s, Aux::NONE),
+        }
+    }
+
+    /// Learns from a corrected sample the propagator accepted (so a refused one changes nothing and the
+    /// stage needs no copy per sample).
+    #[inline(always)]
+    fn learn(&mut self, corrected: GyroSample<f32>) {
+        if let Bias::Estimator(e) = self {
+            e.learn(corrected, Aux::NONE);
         }
     }
 }
@@ -86,18 +97,14 @@ impl FrontEnd {
         clock: None,
     };
 
-    /// Rate sample `i` of `rates` through the alignment and `bias` (the front end's, or a copy). Not
-    /// generic: one copy for every configuration.
+    /// Rate sample `i` of `rates` through the calibration, the alignment and the bias (subtracted; the
+    /// estimator learns from it only once the propagator has accepted it). Not generic: one copy for every
+    /// configuration.
     // Out of line when every scheme has its loops (flash); inlined into the compact build's few loops.
     #[cfg_attr(feature = "monomorphized", inline(never))]
     #[cfg_attr(not(feature = "monomorphized"), inline(always))]
-    fn sample(
-        &self,
-        rates: &Rates<'_>,
-        i: usize,
-        bias: &mut Bias,
-    ) -> Result<GyroSample<f32>, Error> {
-        bias.apply(self.calibrate_and_align(rates.get(i)))
+    fn sample(&self, rates: &Rates<'_>, i: usize) -> Result<GyroSample<f32>, Error> {
+        self.bias.correct(self.calibrate_and_align(rates.get(i)))
     }
 
     #[inline(always)]
@@ -314,7 +321,8 @@ impl<'a> Timing<'a> {
     }
 }
 
-/// The rate loop: per sample, the alignment and the bias (on a copy), its `dt`, the push; on a refusal it
+/// The rate loop: per sample, the calibration, the alignment and the bias, its `dt`, the push, then the
+/// estimator learns from the accepted sample; on a refusal it
 /// stops, the time base and the bias stage as after the last accepted sample (a period keeps the refused
 /// interval, as the core's `push_burst` does).
 pub struct RateLoop<'a> {
@@ -335,15 +343,21 @@ impl Visit<f32> for RateLoop<'_> {
         let n = self.rates.len();
         let mut result = Ok(n);
         for i in 0..n {
-            let mut bias = self.front.bias;
             let front = &*self.front;
             let rates = &self.rates;
-            let pushed = self.time.push(p, i, || front.sample(rates, i, &mut bias));
+            let mut corrected = None;
+            let pushed = self.time.push(p, i, || {
+                let s = front.sample(rates, i)?;
+                corrected = Some(s);
+                Ok(s)
+            });
             if let Err(e) = pushed {
                 result = Err((i, Fail::Core(e)));
                 break;
             }
-            self.front.bias = bias;
+            if let Some(s) = corrected {
+                self.front.bias.learn(s);
+            }
         }
         self.time.restore(self.front);
         result

@@ -391,7 +391,7 @@ impl<T: Real> BiasEstimator<T> {
 
     /// Takes a sample with what the IMU gave beside it, learns from it if the body is still, and returns it
     /// minus the bias (the estimate from before this sample, at the sample's temperature; the saturation
-    /// flag kept).
+    /// flag kept): [`BiasEstimator::correct`], then [`BiasEstimator::learn`].
     ///
     /// # Errors
     /// [`Error::NonFiniteRate`] for a NaN or infinite rate, [`Error::NonFiniteAux`] for a NaN or infinite
@@ -399,6 +399,20 @@ impl<T: Real> BiasEstimator<T> {
     /// estimator is then unchanged.
     #[inline]
     pub fn update_with(&mut self, s: GyroSample<T>, aux: Aux<T>) -> Result<GyroSample<T>, Error> {
+        let out = self.correct(s, aux)?;
+        self.learn(out, aux);
+        Ok(out)
+    }
+
+    /// The sample minus the bias (at its temperature), without learning from it: the first half of
+    /// [`BiasEstimator::update_with`], for a caller that learns only from the samples it keeps (the C API
+    /// learns once the propagator has accepted the sample, so a refused one leaves the estimator as it was
+    /// without a copy of it).
+    ///
+    /// # Errors
+    /// As [`BiasEstimator::update_with`].
+    #[inline]
+    pub fn correct(&self, s: GyroSample<T>, aux: Aux<T>) -> Result<GyroSample<T>, Error> {
         if !s.rate.is_finite() {
             return Err(Error::NonFiniteRate);
         }
@@ -416,13 +430,23 @@ impl<T: Real> BiasEstimator<T> {
             }
             None => self.bias,
         };
-        let d = s.rate - used;
-        let out = GyroSample {
-            rate: d,
+        Ok(GyroSample {
+            rate: s.rate - used,
             saturated: s.saturated,
-        };
+        })
+    }
+
+    /// Learns from `corrected`, what [`BiasEstimator::correct`] returned for a sample with `aux`, if the
+    /// body is still: the second half of [`BiasEstimator::update_with`]. Give it exactly that, before
+    /// anything else changes the estimator (a non-finite input is ignored).
+    #[inline]
+    pub fn learn(&mut self, corrected: GyroSample<T>, aux: Aux<T>) {
+        let d = corrected.rate;
+        if !(d.is_finite() && aux.is_finite()) {
+            return;
+        }
         let g = self.gate;
-        let mut still = !s.saturated && d.x.abs() <= g && d.y.abs() <= g && d.z.abs() <= g;
+        let mut still = !corrected.saturated && d.x.abs() <= g && d.y.abs() <= g && d.z.abs() <= g;
         if let (Some(ga), Some(a)) = (self.accel_gate, aux.accel) {
             match self.accel_reference {
                 Some(r) if self.count > 0 => {
@@ -437,7 +461,7 @@ impl<T: Real> BiasEstimator<T> {
                 // (An empty window has nothing to forget: in motion this is the common path.)
                 self.restart_window();
             }
-            return Ok(out);
+            return;
         }
         self.sum += d;
         self.sum_sq += Vec3::new(d.x * d.x, d.y * d.y, d.z * d.z);
@@ -449,7 +473,6 @@ impl<T: Real> BiasEstimator<T> {
         if self.count >= self.window {
             self.close_window();
         }
-        Ok(out)
     }
 
     /// A full still window learned, and the next one started. Out of line: once per window, not per sample.

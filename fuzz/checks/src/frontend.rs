@@ -21,7 +21,7 @@
 //!   acceleration gate and the temperature model fed arbitrary accelerations and temperatures (NaN and
 //!   infinities among them): a NaN or infinite one is refused as `NonFiniteAux` with the estimator
 //!   unchanged; otherwise the output is the sample minus `bias_at(temperature)` from before, bit for bit,
-//!   and the estimate stays finite. A `MotionBias` (any period) fed those outputs with the accelerations
+//!   and the estimate stays finite; `correct` then `learn` gives the same output and state. A `MotionBias` (any period) fed those outputs with the accelerations
 //!   and arbitrary `dt`: refused input (typed) leaves it unchanged, its estimate stays within ±2 °/s, and
 //!   `at_rest` zeroes it.
 //! - `FixedPeriod`: construction errors as documented; with refusals given back by `carry_over`, the
@@ -474,6 +474,14 @@ fn following<T: Fz>(b: &mut Bytes<'_>, mut est: BiasEstimator<T>) {
         let aux = Aux { accel, temperature };
         let before = est;
         let r = est.update_with(s, aux);
+        // update_with is correct, then learn: the same state and output, split as the C API calls them.
+        let mut split = before;
+        let c = split.correct(s, aux);
+        assert_eq!(format!("{c:?}"), format!("{r:?}"));
+        if let Ok(out) = c {
+            split.learn(out, aux);
+        }
+        assert_same_text(&split, &est, &"correct + learn differ from update_with");
         if !s.rate.is_finite() {
             assert_eq!(r, Err(Error::NonFiniteRate));
             assert_same_text(&est, &before, &"refused sample changed the estimator");
