@@ -280,7 +280,10 @@ impl<T: Real> MotionBias<T> {
         self.acc_quat = (corr * self.acc_quat).normalized().unwrap_or(self.acc_quat);
         // The bias Kalman filter: R of the 6D attitude, R·b and R low-passed like the measurement.
         let q6 = self.acc_quat * self.gyr_quat;
-        let r = rotation_rows(q6);
+        let m = q6.to_rotation_matrix();
+        let r = [
+            m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
+        ];
         let b = self.bias;
         let rb = [
             r[0] * b.x + r[1] * b.y + r[2] * b.z,
@@ -327,23 +330,6 @@ impl<T: Real> MotionBias<T> {
             }
         }
     }
-}
-
-/// The rotation matrix of `q` (body to reference), by rows.
-fn rotation_rows<T: Real>(q: Quat<T>) -> [T; 9] {
-    let (w, x, y, z) = (q.w, q.x, q.y, q.z);
-    let two = T::TWO;
-    [
-        T::ONE - two * (y * y + z * z),
-        two * (x * y - w * z),
-        two * (x * z + w * y),
-        two * (x * y + w * z),
-        T::ONE - two * (x * x + z * z),
-        two * (y * z - w * x),
-        two * (x * z - w * y),
-        two * (y * z + w * x),
-        T::ONE - two * (x * x + y * y),
-    ]
 }
 
 type M3<T> = [[T; 3]; 3];
