@@ -159,10 +159,12 @@ fn a_refused_sample_then_the_next_after_two_periods_is_as_if_it_never_existed() 
     }
 }
 
-/// The unequal spacing restarts History (kept samples drop), and the restarted step is the linear step over
-/// the true 2-period interval: the same rotation as `Linear` from the same attitude and samples.
+/// A refused sample's interval (two periods) is spanned by the cubic at the samples' true times; three
+/// periods (two samples lost) is a gap: the history restarts (kept samples drop), and the restarted step is
+/// the linear step over the true 3-period interval, the same rotation as `Linear` from the same attitude and
+/// samples.
 #[test]
-fn history_restarts_on_the_two_period_interval_with_a_linear_step_over_it() {
+fn history_spans_a_refused_interval_and_restarts_on_a_gap_with_a_linear_step_over_it() {
     let c = Coning::STANDARD;
     let skip = 5;
     let mut p = Propagator::new(c.attitude(0.0), ExpMap, History::new(), Off).unwrap();
@@ -171,29 +173,35 @@ fn history_restarts_on_the_two_period_interval_with_a_linear_step_over_it() {
             .unwrap();
     }
     assert_eq!(p.input().len(), 3);
+    // Two periods: no restart, the history stays full.
+    let mut spanned = p;
+    spanned
+        .push(GyroSample::new(c.rate(0.01 * (skip + 1) as f64)), 0.02)
+        .unwrap();
+    assert_eq!(spanned.input().len(), 3);
     let before = p;
     let (w_prev, w_next) = (
         c.rate(0.01 * (skip - 1) as f64),
-        c.rate(0.01 * (skip + 1) as f64),
+        c.rate(0.01 * (skip + 2) as f64),
     );
-    p.push(GyroSample::new(w_next), 0.02).unwrap();
+    p.push(GyroSample::new(w_next), 0.03).unwrap();
     // The restart kept only the last sample, then took this one.
     assert_eq!(p.input().len(), 2);
     assert_eq!(p.steps(), before.steps() + 1);
     let mut linear = Propagator::new(before.attitude(), ExpMap, Linear::new(), Off).unwrap();
     linear.push(GyroSample::new(w_prev), 0.01).unwrap();
-    linear.push(GyroSample::new(w_next), 0.02).unwrap();
+    linear.push(GyroSample::new(w_next), 0.03).unwrap();
     // Same formula in exact arithmetic (½∫ω = (hh/2)(ω₀ + ω₁), commutator ω₀ × ω₁ = ω(½) × (ω₁ − ω₀)),
-    // different rounding: each half-angle component carries a few roundings of ≤ ε/2 relative to a 0.02 rad
+    // different rounding: each half-angle component carries a few roundings of ≤ ε/2 relative to a 0.03 rad
     // step, the exponential and the product a few ε more, and set_attitude's normalization of the start
     // ≤ 2ε. 16ε (rad) bounds their sum.
     let d = p.attitude().angle_to(linear.attitude());
     assert!(d <= 16.0 * f64::EPSILON, "{d:e}");
-    // A further sample at the new spacing (0.01 again) restarts once more: dt differs from 0.02.
-    p.push(GyroSample::new(c.rate(0.01 * (skip + 2) as f64)), 0.01)
+    // A further sample at the new spacing (0.01 again) restarts once more: dt is a third of 0.03.
+    p.push(GyroSample::new(c.rate(0.01 * (skip + 3) as f64)), 0.01)
         .unwrap();
     assert_eq!(p.input().len(), 2);
-    p.push(GyroSample::new(c.rate(0.01 * (skip + 3) as f64)), 0.01)
+    p.push(GyroSample::new(c.rate(0.01 * (skip + 4) as f64)), 0.01)
         .unwrap();
     assert_eq!(
         p.input().len(),
@@ -234,18 +242,20 @@ fn history_step_order_is_four_at_equal_spacing() {
     }
 }
 
-/// With every 8th interval 1.5 periods long, History restarts twice per irregular interval (entering and
-/// leaving it), each time with a linear step (local error O(h³)) followed by a quadratic one (O(h⁴)). The
-/// restarts are a fixed fraction of the steps, so the global error falls as h² — and it converges at all
-/// because each restarted step integrates over its true interval. Were the cubic built on the wrong spacing,
-/// its error would be O(h) per step and the run would not converge.
+/// With every 8th interval longer: up to two periods (jitter, a dropped or refused sample) the cubic spans
+/// it at the samples' true times and the order stays 4. Three periods is a gap: History restarts twice per
+/// long interval (entering and leaving it), the gap's step linear over its true interval (local error O(h³),
+/// nothing being known of ω inside it), the steps after it a fresh start (fourth order). The gaps are a
+/// fixed fraction of the steps, so the global error falls as h² — and it converges at all because each
+/// restarted step integrates over its true interval. Were the cubic built on the wrong spacing, its error
+/// would be O(h) per step and the run would not converge.
 #[test]
-fn history_keeps_fourth_order_under_jitter_and_restarts_at_gaps() {
+fn history_keeps_fourth_order_under_jitter_and_dropped_samples_and_restarts_at_gaps() {
     let c = Coning::STANDARD;
-    // (long interval, restarts expected per long interval, order): 1.3 h is jitter (within
-    // History::GAP_RATIO): the cubic through the samples at their true times, no restart, order 4.
-    // 2 h is a dropped sample: restarts on entering and on leaving it, linear steps there, order 2.
-    for (stretch, restarts_per, order) in [(1.3, 0usize, 4.0), (2.0, 2, 2.0)] {
+    // (long interval, restarts expected per long interval, order): 1.3 h is jitter and 2 h a dropped
+    // sample (both within History::GAP_RATIO): the cubic through the samples at their true times, no
+    // restart, order 4. 3 h is a gap: restarts on entering and on leaving it, order 2.
+    for (stretch, restarts_per, order) in [(1.3, 0usize, 4.0), (2.0, 0, 4.0), (3.0, 2, 2.0)] {
         let mut hs = Vec::new();
         let mut es = Vec::new();
         for n in [64usize, 128, 256, 512] {

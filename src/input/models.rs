@@ -116,27 +116,32 @@ impl<T: Real> InputModel<T> for Linear<T> {
 /// over the last interval — fourth order from one gyro sample per step, with no latency (the step ends at
 /// the newest sample). The recommended input for a rate gyro.
 ///
-/// Start-up: the first sample only starts the history, the second gives a linear step (second order), the
-/// third a quadratic one (third). Equally spaced samples (each spacing within
-/// 2⁻²⁰ (relative) of the next) use constant weights; jittered ones the cubic through the
-/// samples at their true times (each `dt` as given), still fourth order. A gap — a `dt` more than
-/// [`History::GAP_RATIO`] times the previous one, or less than its inverse (a refused or dropped sample, a
-/// restarted sensor) — restarts the history at the last sample, so that interval is integrated linearly
-/// over its true length and the order builds up again.
+/// Start-up: the first sample only starts the history, the second gives a linear step, the third a
+/// quadratic one that also corrects the linear step before it (the trapezoid's O(h³) error, known once
+/// three samples give ω''; see [`HistoryRate`](super::segment::HistoryRate)). From the third sample on the
+/// attitude is fourth order over any horizon, from a cold start as from a primed history. Equally spaced
+/// samples (each spacing within 2⁻²⁰ (relative) of the next) use constant weights; jittered ones the cubic
+/// through the samples at their true times (each `dt` as given), still fourth order — a refused or dropped
+/// sample too: its interval (twice the others) goes into the next `dt` and the cubic spans it. A gap — a
+/// `dt` more than [`History::GAP_RATIO`] times the previous one, or less than its inverse (two or more
+/// samples missing, a restarted sensor) — restarts the history at the last sample: that interval is
+/// integrated linearly over its true length (nothing is known of ω inside it) and the history starts again
+/// as from cold, fourth order from the next two samples on.
 ///
 /// ```
 /// use quatprop::{input::History, scheme::ExpMap, stabilize::Off, GyroSample, Propagator, Quat, Vec3};
 /// let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), Off)?;
 /// for k in 0..5 {
-///     let t = 0.1 * k as f64; // ω_z = t³ from t = 0.1: the history's 2nd, 3rd and 4th-order steps
+///     let t = 0.1 * k as f64; // ω_z = t³ from t = 0.1: the history's linear, quadratic and cubic steps
 ///     p.push(GyroSample::new(Vec3::new(0.0, 0.0, (t + 0.1).powi(3))), 0.1)?;
 /// }
 /// assert_eq!((p.steps(), p.input().len()), (4, 3));
-/// // Exact: ∫ t³ over [0.1, 0.5]. The linear start-up step over [0.1, 0.2] errs by h³ω''(0.15)/12
-/// // = 7.5e-5 rad, the quadratic step by h⁴ω'''/24 = 2.5e-5 rad; the cubic steps are exact for t³.
+/// // Exact: ∫ t³ over [0.1, 0.5]. The linear step over [0.1, 0.2] errs by h³ω''(0.15)/12 = 7.5e-5 rad;
+/// // the quadratic step takes that back (the two make Simpson's rule, exact for t³), the cubic steps are
+/// // exact.
 /// let exact = (0.5_f64.powi(4) - 0.1_f64.powi(4)) / 4.0;
 /// let angle = 2.0 * p.attitude().z.atan2(p.attitude().w);
-/// assert!((angle - exact - 1.0e-4).abs() < 1e-12, "{}", angle - exact);
+/// assert!((angle - exact).abs() < 1e-15, "{}", angle - exact);
 /// # Ok::<(), quatprop::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -168,8 +173,9 @@ impl<T: Real> History<T> {
     pub(crate) const SPACING_TOLERANCE: f64 = 1.0 / 1_048_576.0;
 
     /// A `dt` more than this times the previous one (or less than its inverse) is a gap: the history
-    /// restarts.
-    pub const GAP_RATIO: f64 = 1.5;
+    /// restarts. One missing sample (twice the spacing, with jitter) stays below it and is spanned by the
+    /// cubic; two missing samples (three times) are a gap.
+    pub const GAP_RATIO: f64 = 2.5;
 
     /// An empty history.
     #[must_use]
@@ -640,8 +646,11 @@ mod tests {
         let newton = HistoryRate::newton([w[2], w[3]], [w[1] - w[0], w[2] - w[1]], 4, 1.0, 1.0);
         let d = newton.half_angle(0.005).z - seg.half_angle(0.005).z;
         assert!(d.abs() < 1e-18, "{d:e}");
-        // dt doubled (a dropped sample): the step is linear over the true interval.
+        // dt doubled (a dropped sample): the cubic through the samples at their true times.
         let (seg, _) = history_segment(&[0.0, 0.01, 0.02, 0.04], omega);
+        assert!(matches!(seg, HistoryRate::Newton { .. }));
+        // dt tripled (two dropped samples): a gap, linear over the true interval.
+        let (seg, _) = history_segment(&[0.0, 0.01, 0.02, 0.05], omega);
         assert!(matches!(seg, HistoryRate::Uniform { count: 2, .. }));
     }
 

@@ -136,7 +136,10 @@ fn earlier<T: Real>(d1: Vec3<T>, d2: Vec3<T>) -> Vec3<T> {
 }
 
 /// The equally spaced history's mean rate over the step as `ω_k + correction`: the correction for the
-/// cubic (`count` 4) and the quadratic (3), `None` for the linear step (2), which has no `ω_k` term.
+/// cubic (`count` 4) and the quadratic step (3), `None` for the linear step (2), which has no `ω_k` term.
+/// The quadratic step also carries the start correction (see [`HistoryRate`]): `(2Δ₃ + Δ₂)/6` instead of
+/// the quadratic's own `(5Δ₃ + Δ₂)/12`, so that the linear step before it and this one together integrate
+/// Simpson's rule over both intervals.
 #[inline(always)]
 fn uniform_correction<T: Real>(ends: [Vec3<T>; 2], d: [Vec3<T>; 2], count: u8) -> Option<Vec3<T>> {
     let [w2, w3] = ends;
@@ -144,7 +147,7 @@ fn uniform_correction<T: Real>(ends: [Vec3<T>; 2], d: [Vec3<T>; 2], count: u8) -
     let d3 = w3 - w2;
     match count {
         4 => Some((d3 * T::from_f64(9.0) + earlier(d1, d2)) * T::from_f64(1.0 / 24.0)),
-        3 => Some((d3 * T::from_f64(5.0) + d2) * T::from_f64(1.0 / 12.0)),
+        3 => Some((d3 * T::TWO + d2) * T::from_f64(1.0 / 6.0)),
         _ => None,
     }
 }
@@ -157,6 +160,16 @@ fn uniform_correction<T: Real>(ends: [Vec3<T>; 2], d: [Vec3<T>; 2], count: u8) -
 /// `Newton`: samples at their true times (jittered timestamps), the Newton form
 /// `p(c) = ω_k + (ω_{k+1} − ω_k)c + d₂ c(c − 1) + d₃ c(c − 1)(c + r)` in units of the step, with the
 /// divided differences `d₂`, `d₃` and `r = (t_k − t_{k−1})/h`.
+///
+/// **The start correction.** The history's first step (after a cold start or a gap) is linear over
+/// `[t_{k−1}, t_k]`, the trapezoid rule, which errs by `−(r h)³ω''/12`: O(h³), one order short, and over a
+/// horizon it would set the order of the whole run. The quadratic step that follows (three samples) knows
+/// ω'' and carries the correction: its rate function is the quadratic plus `r³d₂ c(c − 1)` (zero at both
+/// ends, so the samples stay exact at their nodes), whose integral over the step, `−r³d₂/6`, is the
+/// trapezoid's error over the interval before. Moved from `t_k` to the end of this step it commutes with
+/// the step's rotation to O(h⁴), so from the third sample on the attitude is fourth order over any horizon,
+/// with no latency (the linear step's own attitude, one sample long, is third order). In both forms this
+/// is the quadratic's `d₂` times `1 + r³` (equal spacing: `r = 1`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum HistoryRate<T> {
     /// Equally spaced samples.
@@ -198,9 +211,11 @@ impl<T: Real> HistoryRate<T> {
                 let d012 = (d12 - d01) * (T::ONE / (r1 + r2));
                 (d2, (d2 - d012) * (T::ONE / (T::ONE + r1 + r2)))
             }
+            // With the start correction: d₂·(1 + r³).
             3 => {
                 let d12 = dd2 * (T::ONE / r1);
-                ((d1 - d12) * (T::ONE / (T::ONE + r1)), Vec3::ZERO)
+                let start = T::ONE + r1 * r1 * r1;
+                ((d1 - d12) * (start / (T::ONE + r1)), Vec3::ZERO)
             }
             _ => (Vec3::ZERO, Vec3::ZERO),
         };
@@ -214,14 +229,15 @@ impl<T: Real> HistoryRate<T> {
 
     /// The weights of `[Δ₁, Δ₂, Δ₃]` in `ω(c) = ω_k + Σ weight·Δ` for equally spaced samples (the
     /// Newton form on the nodes 0, 1, −1, −2: `cΔ₃ + c(c−1)/2·(Δ₃ − Δ₂) + c(c−1)(c+1)/6·(Δ₃ − 2Δ₂ + Δ₁)`,
-    /// the terms the count allows).
+    /// the terms the count allows; the quadratic step's second difference doubled by the start
+    /// correction).
     #[inline(always)]
     fn weights(count: u8, c: f64) -> [f64; 3] {
         let quadratic = c * (c - 1.0) / 2.0;
         let cubic = c * (c - 1.0) * (c + 1.0) / 6.0;
         match count {
             4 => [cubic, -quadratic - 2.0 * cubic, c + quadratic + cubic],
-            3 => [0.0, -quadratic, c + quadratic],
+            3 => [0.0, -2.0 * quadratic, c + 2.0 * quadratic],
             _ => [0.0, 0.0, c],
         }
     }
@@ -257,8 +273,8 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
         }
     }
     /// `½∫ω dt` written on the differences of the samples, so a constant rate integrates exactly:
-    /// cubic `ω_k + (9Δ₃ + 4Δ₂ − Δ₁)/24` (Adams–Moulton's (1, −5, 19, 9)/24), quadratic
-    /// `ω_k + (5Δ₃ + Δ₂)/12`, linear `(ω_k + ω_{k+1})/2`. Newton form:
+    /// cubic `ω_k + (9Δ₃ + 4Δ₂ − Δ₁)/24` (Adams–Moulton's (1, −5, 19, 9)/24), quadratic with the start
+    /// correction `ω_k + (2Δ₃ + Δ₂)/6`, linear `(ω_k + ω_{k+1})/2`. Newton form:
     /// `∫₀¹ p = ω_k + Δ₃/2 − d₂/6 − d₃(1/12 + r/6)`.
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
@@ -304,7 +320,7 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
         (p, pe + e * hh)
     }
     /// `ω(½) × (ω_{k+1} − ω_k)`: uniform, ω(½) from the interpolant, `ω_k + (5/16)Δ₃ + (4Δ₂ − Δ₁)/16`
-    /// (cubic; quadratic `ω_k + (3/8)Δ₃ + (1/8)Δ₂`), whose `Δ₃` term drops out of the cross product with
+    /// (cubic; quadratic with the start correction `ω_k + (Δ₃ + Δ₂)/4`), whose `Δ₃` term drops out of the cross product with
     /// `Δ₃` (and `4Δ₂ − Δ₁` is the mean rate's too); Newton, ω(½) ≈ (ω_k + ω_{k+1})/2, which makes it
     /// `ω_k × ω_{k+1}` (the O(h²) difference costs O(h⁵) per step). `ω_{k+1} − ω_k` is `ω'(½)` to O(h³).
     #[inline(always)]
@@ -315,7 +331,7 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
                 let [d1, d2] = *d;
                 let mid = match count {
                     4 => w2 + earlier(d1, d2) * T::from_f64(1.0 / 16.0),
-                    3 => w2 + d2 * T::from_f64(0.125),
+                    3 => w2 + d2 * T::from_f64(0.25),
                     _ => w2,
                 };
                 Some(mid.cross(w3 - w2))
