@@ -2,8 +2,12 @@
 //! f32 samples and the same f32 periods (so the only difference is the f32 arithmetic), at 10⁶, 10⁷ and
 //! 10⁸ steps, for each accumulator, on a constant rate and on coning at an incommensurate frequency.
 //!
+//! The same for the fixed-point propagator (`fixed::Q30Propagator`) beside f32, both fed the motions as a
+//! 16-bit gyro's counts.
+//!
 //! `cargo run --release --example own_error -- [--steps N] [--out DIR]`
 use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
+use quatprop::fixed::Q30Propagator;
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::{History, Hold, InputModel, Linear};
 use quatprop::scheme::ExpMap;
@@ -67,6 +71,42 @@ where
         }
     }
     (out, host_ns(motion, i32m, acc))
+}
+
+/// ±2000 °/s on 16 bits (rad/s per count).
+const RAD_PER_COUNT: f64 = 2000.0 / 32768.0 * std::f64::consts::PI / 180.0;
+
+/// The motion's rate at sample k as a 16-bit gyro's counts (rounded to nearest).
+fn counts(m: Motion, k: u64) -> [i16; 3] {
+    let w = rate(m, k).to_f64() * (1.0 / RAD_PER_COUNT);
+    [w.x, w.y, w.z].map(|v| v.round() as i16)
+}
+
+/// Own errors (rad) at the checkpoints of the fixed-point propagator and of the f32 recommended one, each
+/// against the f64 recommended propagator fed the same counts (times the scale) at 1 ms.
+fn run_counts(motion: Motion, checkpoints: &[u64]) -> (Vec<f64>, Vec<f64>) {
+    let mut fixed = Q30Propagator::new(Quat::<f64>::IDENTITY, RAD_PER_COUNT, 1e-3).unwrap();
+    let mut p32 = Propagator::recommended(Quat::<f32>::IDENTITY).unwrap();
+    let mut p64 = Propagator::recommended(Quat::<f64>::IDENTITY).unwrap();
+    let mut period = FixedPeriod::<f32>::new(1e-3).unwrap();
+    let (mut e_fixed, mut e_f32) = (Vec::new(), Vec::new());
+    let last = *checkpoints.last().unwrap();
+    let mut next = 0;
+    for k in 0..=last {
+        let c = counts(motion, k);
+        fixed.push(c).unwrap();
+        let w = Vec3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2])) * RAD_PER_COUNT;
+        p64.push(GyroSample::new(w), 1e-3).unwrap();
+        let scale = RAD_PER_COUNT as f32;
+        let w32 = Vec3::new(f32::from(c[0]), f32::from(c[1]), f32::from(c[2])) * scale;
+        p32.push(GyroSample::new(w32), period.next_dt()).unwrap();
+        if k == checkpoints[next] {
+            e_fixed.push(fixed.attitude_f64().angle_to(p64.attitude()));
+            e_f32.push(p32.attitude().to_f64().angle_to(p64.attitude()));
+            next += 1;
+        }
+    }
+    (e_fixed, e_f32)
 }
 
 /// Host nanoseconds per push of the f32 propagator alone (samples and dts precomputed): the least of
@@ -277,6 +317,46 @@ fn main() {
          rate: `t*` at 2 rad/s is a quarter of the table's.",
         kahan = ratio,
         kahan2 = ratio * ratio,
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "\n## Fixed point (`fixed::Q30Propagator`)\n\n\
+         The recommended step in integers for cores without an FPU, fed a 16-bit gyro's counts (±2000 °/s, \
+         the motions above rounded to counts), against the f64 recommended propagator fed the same counts \
+         times the scale at exactly 1 ms; beside it the f32 recommended propagator on the same counts (its \
+         periods from `FixedPeriod`, as above). The f32 column differs from the table above because the \
+         samples differ (counts, not f32 rates).\n"
+    )
+    .unwrap();
+    write!(md, "| motion | propagator |").unwrap();
+    for c in &checkpoints {
+        write!(md, " own error at {c:.0e} (rad) |").unwrap();
+    }
+    writeln!(md, " growth exponent |").unwrap();
+    writeln!(md, "|{}", "---|".repeat(3 + checkpoints.len())).unwrap();
+    for (mname, m) in [
+        ("constant 1 rad/s", Motion::Constant),
+        ("coning, Ω = 2π/√2", Motion::Coning),
+    ] {
+        let (fixed, f32) = run_counts(m, &checkpoints);
+        for (label, errs) in [("`Q30Propagator` (Q30)", fixed), ("recommended, f32", f32)] {
+            write!(md, "| {mname} | {label} |").unwrap();
+            for e in &errs {
+                write!(md, " {e:.2e} |").unwrap();
+            }
+            let slope = if errs.len() > 1 {
+                (errs[errs.len() - 1] / errs[0]).log10() / (errs.len() - 1) as f64
+            } else {
+                f64::NAN
+            };
+            writeln!(md, " {slope:.2} |").unwrap();
+        }
+    }
+    writeln!(
+        md,
+        "\nInstructions per step on cores without an FPU, the fixed-point step against soft-float f32: \
+         docs/firmware.md."
     )
     .unwrap();
     writeln!(md, "\nRun time {:.0} s.", start.elapsed().as_secs_f64()).unwrap();

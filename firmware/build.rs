@@ -12,6 +12,16 @@ fn main() {
     };
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed={map}");
+    // `fpu`: a hard-float target (an FPU on every board of the triple); `microbit`: the nRF51 board, whose
+    // SysTick runs at 16 MHz (25 MHz on the mps2 boards).
+    println!("cargo:rustc-check-cfg=cfg(fpu)");
+    println!("cargo:rustc-check-cfg=cfg(microbit)");
+    if target.ends_with("eabihf") {
+        println!("cargo:rustc-cfg=fpu");
+    }
+    if target == "thumbv6m-none-eabi" {
+        println!("cargo:rustc-cfg=microbit");
+    }
     if !target.starts_with("thumb") {
         return;
     }

@@ -11,7 +11,12 @@ Debian's llvm-size or GNU size also work). What it does, every number coming fro
    `burst` the same way: FIFO bursts (`push_burst` over bursts of 1, 8, 32 samples against one `push` per
    sample, and the quick start fed FIFO reads of 1, 8, 32);
 2. builds `minimal` once per scheme (one scheme + History + FirstOrder, no defmt) and reads the section sizes;
-3. builds and runs `stack` on the M4F: the painted stack depth of a push for every configuration.
+3. builds and runs `stack` on the M4F: the painted stack depth of a push for every configuration;
+4. builds `bench` for the cores without an FPU (thumbv7m: Cortex-M3 on mps2-an385; thumbv6m: Cortex-M0 on
+   the microbit; f32 in software) and runs it there: the recommended configuration, ExpMap + Hold and the
+   quick start. The microbit's SysTick clock (16 MHz) is cross-checked by running its image on mps2-an385
+   too (25 MHz): the counts must agree.
+Also needs the thumbv7m-none-eabi and thumbv6m-none-eabi targets.
 """
 import argparse
 import os
@@ -44,6 +49,14 @@ MINIMAL = [("none (baseline)", "", "baseline"),
            ("Rk4", "Hold", "input-hold"), ("Rk4", "Linear", "input-linear")]
 # The issue's flash target for ExpMap + History + FirstOrder: library code (bytes).
 LIBRARY_TARGET = 2560
+# The cores without an FPU: (triple, board, core, a typical clock of such parts (Hz), examples).
+SOFT_FLOAT = [("thumbv7m-none-eabi", "mps2-an385", "Cortex-M3", 72_000_000, "STM32F103, EFM32"),
+              ("thumbv6m-none-eabi", "microbit", "Cortex-M0", 48_000_000, "RP2040 (M0+), STM32G0/L0, nRF51")]
+# The bench's fixed-point row (fixed::Q30Propagator), on every core.
+FIXED = ("fixed", "Q30", "FirstOrder", "integer")
+# The soft-float bench's rows: (input, scheme, stabilizer, accumulator).
+SOFT_ROWS = [("history", "ExpMap", "FirstOrder", "Plain"), ("hold", "ExpMap", "FirstOrder", "Plain"),
+             ("hold", "ExpMap", "Normalize", "Plain")]
 
 
 def log(msg):
@@ -77,15 +90,15 @@ def size_tool():
     raise SystemExit("no llvm-size: rustup component add llvm-tools")
 
 
-def cargo(*args):
+def cargo(*args, target=TARGET):
     """cargo in firmware/ (its .cargo/config.toml: runner, DEFMT_LOG)."""
-    return run(["cargo", *args, "--release", "--target", TARGET])
+    return run(["cargo", *args, "--release", "--target", target])
 
 
-def elf(name):
+def elf(name, target=TARGET):
     # cargo runs in firmware/, so a relative CARGO_TARGET_DIR is relative to it.
     target_dir = os.path.join(FW, os.environ.get("CARGO_TARGET_DIR") or "target")
-    return os.path.join(target_dir, TARGET, "release", name)
+    return os.path.join(target_dir, target, "release", name)
 
 
 # ---------------------------------------------------------------- 1. bench
@@ -95,12 +108,16 @@ def build_programs():
     cargo("build", "-q", "--bin", "bench", "--bin", "burst", "--bin", "stack")
 
 
-def start(name):
-    """Starts a built program on mps2-an386 through qemu-run (the cargo runner), its output into a file (a
-    full pipe would stall the emulator); `finish` waits for it and reads the file."""
+def start(name, target=TARGET, machine=None):
+    """Starts a built program on its triple's board (mps2-an386 for the M4F) through qemu-run (the cargo
+    runner), or on `machine`, its output into a file (a full pipe would stall the emulator); `finish` waits
+    for it and reads the file."""
     out = tempfile.TemporaryFile(mode="w+")
-    return subprocess.Popen(["./qemu-run", elf(name)], cwd=FW, stdout=out, stderr=subprocess.STDOUT,
-                            text=True), out
+    env = dict(os.environ)
+    if machine:
+        env["QEMU_MACHINE"] = machine
+    return subprocess.Popen(["./qemu-run", elf(name, target)], cwd=FW, stdout=out, stderr=subprocess.STDOUT,
+                            text=True, env=env), out
 
 
 def finish(started, name):
@@ -110,24 +127,28 @@ def finish(started, name):
     text = out.read()
     if proc.returncode != 0:
         sys.stderr.write(text)
-        raise SystemExit(f"{name} failed on mps2-an386 ({proc.returncode})")
+        raise SystemExit(f"{name} failed ({proc.returncode})")
     return text
 
 
-def run_bench(out):
+def run_bench(out, expected=len(INPUTS) * len(SCHEMES) * 2 * 3):
     rows = {}
     quick = None
     for line in out.splitlines():
         m = re.match(r"bench (\S+) (\S+) (\S+) (Plain|Kahan|FloatFloat) ([\d.]+)$", line)
         if m:
             rows[m.group(1, 2, 3, 4)] = float(m.group(5))
+        f = re.match(r"bench fixed Q30Propagator ([\d.]+)$", line)
+        if f:
+            rows[FIXED] = float(f.group(1))
         q = re.match(r"bench quickstart on_fifo per-sample ([\d.]+) \(samples=(\d+), fixed=(\d+)\)", line)
         if q:
             quick = (float(q.group(1)), int(q.group(2)), int(q.group(3)))
     if "bench done" not in out or quick is None:
         raise SystemExit("bench did not finish:\n" + out)
-    expected = len(INPUTS) * len(SCHEMES) * 2 * 3
-    if len(rows) != expected:
+    if FIXED not in rows:
+        raise SystemExit("bench printed no fixed-point row:\n" + out)
+    if len(rows) != expected + 1:
         raise SystemExit(f"bench printed {len(rows)} rows, expected {expected}")
     return rows, quick
 
@@ -162,7 +183,8 @@ def write_bench_csv(rows):
     stabilizer, input model, instructions per step (read by the lab's work-precision overlay)."""
     with open(os.path.join(FW, "bench-m4f.csv"), "w") as f:
         f.write("precision,scheme,stabilizer,input,instructions_per_step\n")
-        for (inp, scheme, stab, acc), v in sorted(rows.items(), key=lambda kv: (kv[0][3], kv[0][1], kv[0][2],
+        grid = {k: v for k, v in rows.items() if k != FIXED}
+        for (inp, scheme, stab, acc), v in sorted(grid.items(), key=lambda kv: (kv[0][3], kv[0][1], kv[0][2],
                                                                                INPUTS.index(kv[0][0]))):
             prec = {"Plain": "f32", "Kahan": "f32-kahan", "FloatFloat": "f32-floatfloat"}[acc]
             f.write(f"{prec},{scheme},{stab},{inp},{v}\n")
@@ -212,8 +234,74 @@ def run_stack(out):
     return per_row, worst, count
 
 
+# ---------------------------------------------------------------- 4. cores without an FPU
+def build_soft():
+    for target, *_ in SOFT_FLOAT:
+        log(f"building bench for {target} ...")
+        cargo("build", "-q", "--bin", "bench", target=target)
+
+
+def run_soft(procs):
+    """{core: (rows, quick)} from the soft-float benches; the microbit's clock checked on mps2-an385."""
+    soft = {}
+    for target, board, core, *_ in SOFT_FLOAT:
+        soft[core] = run_bench(finish(procs[(target, board)], f"bench on {board}"), len(SOFT_ROWS))
+    m0 = soft["Cortex-M0"][0]
+    check, _ = run_bench(finish(procs[("thumbv6m-none-eabi", "mps2-an385")], "the M0 bench on mps2-an385"),
+                         len(SOFT_ROWS))
+    for key, v in m0.items():
+        # The same image reads 25/16 as many instructions on the 25 MHz board if the microbit's SysTick
+        # runs at 16 MHz.
+        if abs(check[key] * 16 / 25 - v) > 0.005 * v:
+            raise SystemExit(f"microbit SysTick: {key} {v} on the microbit, {check[key]} on mps2-an385")
+    return soft
+
+
+def soft_section(soft):
+    o = ["## Cores without an FPU: Cortex-M3 and Cortex-M0\n"]
+    o.append("The same `bench` program built for thumbv7m-none-eabi (Cortex-M3, QEMU `mps2-an385`) and "
+             "thumbv6m-none-eabi (Cortex-M0, QEMU `microbit`), where f32 arithmetic is software "
+             "(compiler-builtins' `__aeabi_fadd`, `__aeabi_fmul`, …): the recommended configuration, "
+             "ExpMap + Hold (one exponential map per sample, the cheap peers' form) and the quick start, "
+             "counted as above over 16 steps (32 samples for the quick start: a loop must fit one wrap of "
+             "SysTick). Soft-float takes a data-dependent path, so the figures move by about 1 % with the "
+             "samples. The microbit's SysTick counts QEMU's 16 MHz system clock; the script runs the M0 image "
+             "on `mps2-an385` (25 MHz) too and checks that the counts agree.\n")
+    cores = [c for _, _, c, *_ in SOFT_FLOAT]
+    o.append("| configuration | " + " | ".join(f"{c} instructions per step" for c in cores) + " |")
+    o.append("|---|" + "---:|" * len(cores))
+    labels = {("history", "ExpMap", "FirstOrder", "Plain"): "ExpMap + History + FirstOrder (recommended)",
+              ("hold", "ExpMap", "FirstOrder", "Plain"): "ExpMap + Hold + FirstOrder",
+              ("hold", "ExpMap", "Normalize", "Plain"): "ExpMap + Hold + Normalize"}
+    labels[FIXED] = "**`fixed::Q30Propagator`** (the recommended step in integers: raw counts, Q30 attitude)"
+    for key in SOFT_ROWS + [FIXED]:
+        o.append(f"| {labels[key]} | " + " | ".join(f"{soft[c][0][key]:.1f}" for c in cores) + " |")
+    o.append("| the README's quick start, per sample | "
+             + " | ".join(f"{soft[c][1][0]:.1f}" for c in cores) + " |")
+    o.append("")
+    o.append("What a 1 kHz update costs, at one cycle per instruction. That is a lower bound: on these cores "
+             "a load takes 2 cycles and a taken branch 2 to 3, and flash wait states add more.\n")
+    o.append("| core | clock | configuration | time per step (at least) | CPU share at 1 kHz (at least) |")
+    o.append("|---|---:|---|---:|---:|")
+    for _, _, core, hz, examples in SOFT_FLOAT:
+        rows, quick = soft[core]
+        for key in [SOFT_ROWS[0], FIXED, SOFT_ROWS[1]]:
+            us = rows[key] / hz * 1e6
+            o.append(f"| {core} ({examples}) | {hz / 1e6:.0f} MHz | {labels[key]} | {us:.0f} µs | "
+                     f"{us / 10:.1f} % |")
+    o.append("")
+    rec, fixed = (soft["Cortex-M0"][0][k] for k in (SOFT_ROWS[0], FIXED))
+    o.append(f"The fixed-point step is {rec / fixed:.1f} times cheaper than soft-float f32 on the Cortex-M0 and "
+             f"{soft['Cortex-M3'][0][SOFT_ROWS[0]] / soft['Cortex-M3'][0][FIXED]:.1f} times on the Cortex-M3 "
+             "(which multiplies 32 x 32 -> 64 bits in one instruction; the M0 has no such instruction and "
+             "takes four 16 x 16-bit products). Its error against an f64 propagator fed the same samples is "
+             "in `tests/fixed.rs` (the module's documentation, `src/fixed.rs`, says how each rounding is kept "
+             "from adding up).\n")
+    return "\n".join(o)
+
+
 # ---------------------------------------------------------------- document
-def document(bench, quick, burst, flash, stack, tools):
+def document(bench, quick, burst, flash, stack, tools, soft):
     per_row, worst, count = stack
     o = []
     o.append(f"_Generated by `python3 firmware/figures.py` with {tools['rustc']} and {tools['qemu']}; "
@@ -245,6 +333,9 @@ def document(bench, quick, burst, flash, stack, tools):
     per, n, fixed = quick
     o.append("### The recommended configuration and the quick start\n")
     o.append(f"- ExpMap + History + FirstOrder, Plain: **{rec:.1f}** instructions per step.")
+    o.append(f"- The same step in fixed point (`fixed::Q30Propagator`, raw counts in, Q30 attitude; for cores "
+             f"without an FPU, see below): {bench[FIXED]:.1f} instructions per step here, where the FPU "
+             f"makes f32 the cheaper.")
     o.append(f"- The README's quick start (`Attitude::on_fifo`: raw counts → axis remap → bias estimator → "
              f"`push_burst` with the exact period, the configuration above): **{per:.1f}** instructions per "
              f"sample (over {n} samples in FIFO bursts of 32; {fixed} instructions for the call overhead).\n")
@@ -333,6 +424,7 @@ def document(bench, quick, burst, flash, stack, tools):
             cells.append(f"{v[0]} / {v[1]}" if v else "-")
         o.append(f"| {s} | " + " | ".join(cells) + " |")
     o.append("")
+    o.append(soft_section(soft))
     return "\n".join(o)
 
 
@@ -346,16 +438,20 @@ def main():
         "qemu": run(["qemu-system-arm", "--version"]).splitlines()[0].strip(),
     }
     build_programs()
-    # The three emulations run side by side (bench and burst count instructions with -icount: the same
-    # counts whatever else runs) while the flash table's images build.
-    log("running bench, burst (-icount shift=10) and stack on mps2-an386 ...")
+    build_soft()
+    # The emulations run side by side (bench and burst count instructions with -icount: the same counts
+    # whatever else runs) while the flash table's images build.
+    log("running bench, burst (-icount shift=10) and stack on mps2-an386, bench on mps2-an385 and microbit ...")
     procs = {name: start(name) for name in ("bench", "burst", "stack")}
+    soft_procs = {(t, b): start("bench", t) for t, b, *_ in SOFT_FLOAT}
+    soft_procs[("thumbv6m-none-eabi", "mps2-an385")] = start("bench", "thumbv6m-none-eabi", "mps2-an385")
     flash = flash_table(tool)
     bench, quick = run_bench(finish(procs["bench"], "bench"))
     burst = run_burst(finish(procs["burst"], "burst"))
     stack = run_stack(finish(procs["stack"], "stack"))
+    soft = run_soft(soft_procs)
     write_bench_csv(bench)
-    text = document(bench, quick, burst, flash, stack, tools)
+    text = document(bench, quick, burst, flash, stack, tools, soft)
     with open(args.out, "w") as f:
         f.write(text)
     log(f"wrote {args.out} and {os.path.join(FW, 'bench-m4f.csv')}")

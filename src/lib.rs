@@ -13,6 +13,7 @@ mod convert;
 mod dispatch;
 mod error;
 mod exact;
+pub mod fixed;
 pub mod frontend;
 mod gauss;
 pub mod input;

@@ -3,14 +3,20 @@
 //! On the mps2 boards SysTick counts the 25 MHz core clock. With `-icount shift=10` every instruction
 //! advances virtual time by 2¹⁰ ns, so one instruction is 25.6 ticks and
 //! `instructions = ticks · 40 / 1024`. The 24-bit counter wraps after 2²⁴ / 25.6 ≈ 655 000 instructions:
-//! measure shorter regions. These are executed instructions, not Cortex-M4 cycles.
+//! measure shorter regions. On the microbit (nRF51, Cortex-M0) SysTick counts QEMU's 16 MHz system clock:
+//! 16.384 ticks per instruction, a wrap after about 1 020 000. These are executed instructions, not
+//! cycles.
 
 use cortex_m::peripheral::{syst::SystClkSource, SYST};
 
 /// The `-icount shift` the runner passes to QEMU for the bench.
 pub const ICOUNT_SHIFT: u32 = 10;
-/// SysTick clock of the mps2 boards (Hz).
-const SYSTICK_HZ: u64 = 25_000_000;
+/// SysTick clock (Hz): the mps2 boards' 25 MHz, the microbit's 16 MHz.
+const SYSTICK_HZ: u64 = if cfg!(microbit) {
+    16_000_000
+} else {
+    25_000_000
+};
 
 /// A free-running SysTick on the core clock.
 pub struct Counter {
@@ -41,8 +47,7 @@ impl Counter {
 
     /// Converts ticks to executed instructions (rounded to nearest).
     pub fn instructions(ticks: u32) -> u32 {
-        let ns_per_tick = 1_000_000_000 / SYSTICK_HZ; // 40
-        let ns = ticks as u64 * ns_per_tick;
+        let ns = ticks as u64 * 1_000_000_000 / SYSTICK_HZ; // 40 or 62.5 ns per tick
         ((ns + (1 << (ICOUNT_SHIFT - 1))) >> ICOUNT_SHIFT) as u32
     }
 

@@ -6,7 +6,8 @@
 //! that does not exist, so if any panic path is still reachable after optimization the link fails. The
 //! sensor front end (`CountScale`, `Calibration`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator` (with its
 //! accelerometer gate and temperature model), `MotionBias`, `SampleTiming`, `FixedPeriod`,
-//! `TickClock`) is called once, with opaque inputs, in every image; `start` and the FIFO bursts
+//! `TickClock`) and the fixed-point propagator (`fixed::Q30Propagator`: `new`, `push`, `push_burst`,
+//! `restart_input`, the getters) are called once, with opaque inputs, in every image; `start` and the FIFO bursts
 //! (`push_burst` at a fixed period, `push_burst_timed` with sensor ticks) for every input model ×
 //! accumulator through the run-time `SchemeKind` × `StabilizerKind` (whose dispatch reaches every scheme's
 //! and stabilizer's code; one image with the bursts on every zero-sized combination too would not fit the
@@ -31,6 +32,7 @@ use core::hint::black_box;
 use cortex_m_rt::entry;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
 use quatprop::config::{AccumulatorKind, Config, InputKind, Visit};
+use quatprop::fixed::Q30Propagator;
 use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
     MotionBias, SampleTiming, TickClock,
@@ -210,6 +212,24 @@ fn front_end() {
         let _ = black_box(clock.advance(black_box(70_000)));
         black_box(clock.gaps());
         clock.restart();
+    }
+    let fixed = Q30Propagator::new(
+        black_box(Quat::<f32>::IDENTITY),
+        black_box(1.0e-3),
+        black_box(1.0e-3),
+    );
+    if let Ok(mut p) = fixed {
+        for _ in 0..black_box(4) {
+            let _ = black_box(p.push(black_box([1, -2, i16::MAX])));
+        }
+        let _ = black_box(p.push_burst(black_box(&[[3, 4, 5], [i16::MIN, 0, 7]])));
+        p.restart_input();
+        black_box((
+            p.attitude(),
+            p.attitude_q30(),
+            p.steps(),
+            p.saturated_samples(),
+        ));
     }
 }
 
