@@ -288,6 +288,25 @@ pub fn run_with<S: Scheme<f32>, Z: Stabilizer>(
     built.unwrap_or(Outcome::failed(scene.pushes(steps)))
 }
 
+/// The fixed-point propagator's run: the scene's 1 kHz rates (constant, or the coning of the Linear and
+/// History scenes) as a ±2000 °/s gyro's counts (f32, truncated toward zero), `steps` steps from the
+/// identity. Returns the Q30 attitude and the steps taken (`None` if a sample was refused).
+pub fn run_fixed(scene: Scene, steps: u32) -> Option<([i32; 4], u64)> {
+    let rad_per_count = 2000.0_f32 / 32768.0 * (core::f32::consts::PI / 180.0);
+    let mut p = quatprop::fixed::Q30Propagator::new(Quat::IDENTITY, rad_per_count, DT).ok()?;
+    let scene = match scene {
+        Scene::ConingTwiceRate => Scene::ConingHistory,
+        s => s,
+    };
+    let mut feed = Feed::new(scene);
+    for _ in 0..=steps {
+        let (s, _) = feed.next_sample();
+        let w = s.rate * (1.0 / rad_per_count);
+        p.push([w.x as i16, w.y as i16, w.z as i16]).ok()?;
+    }
+    Some((p.attitude_q30(), p.steps()))
+}
+
 /// Runs one smoke configuration on one scene for `steps` steps from the identity.
 pub fn run(scene: Scene, config: Config, steps: u32) -> Outcome {
     fn baumgarte<S: Scheme<f32> + quatprop::scheme::RungeKutta>(

@@ -77,6 +77,18 @@ fn smoke_output(steps: u32) -> String {
         }
     }
     assert_eq!(runs, Scene::ALL.len() * Config::COUNT);
+    for scene in [Scene::Constant, Scene::ConingHistory] {
+        let (q, n) = scenes::run_fixed(scene, steps).expect("no sample refused");
+        assert_eq!(n, u64::from(steps));
+        out += &format!(
+            "fixed {} Q30Propagator {:08x} {:08x} {:08x} {:08x} steps={n}\n",
+            scene.name(),
+            q[0] as u32,
+            q[1] as u32,
+            q[2] as u32,
+            q[3] as u32
+        );
+    }
     out + "smoke done\n"
 }
 
