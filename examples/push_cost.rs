@@ -1,8 +1,8 @@
 //! Host cost per sample of the three ways a firmware or a tool feeds the recommended f32 propagator: `push`
 //! from one loop, `push` of the same propagator type from a second place in the same binary (which keeps
 //! the compiler from inlining it), and `push_burst` over FIFO bursts of 32 at a fixed period. A burst must
-//! cost no more per sample than single pushes, and a second call site must not double the cost (0.2's
-//! figures on this kind of host: 20 ns inlined, 45–50 ns from two places, 53 ns per burst sample).
+//! cost no more per sample than single pushes (0.2 on this host: 50 ns per single push from two places,
+//! 53 per burst sample).
 //!
 //! `cargo run --release --example push_cost -- [--out DIR]` (writes DIR/push-cost.md)
 use quatprop::frontend::FixedPeriod;
@@ -77,8 +77,8 @@ fn main() {
          Host nanoseconds per sample of the recommended f32 propagator (ExpMap + History + FirstOrder), \
          {N} samples of a smooth motion per run, the least of {ROUNDS} interleaved runs each, on the machine \
          that ran the command. `push` is not forced inline (a firmware that pushes from many places would \
-         hold a copy of the step at each); out of line it takes and returns the whole state at once, and \
-         each burst loop inlines the step with the state in locals.\n\n\
+         hold a copy of the step at each), so from two places it is a call that loads and stores the whole \
+         state every sample; each burst loop inlines the step with the state in locals.\n\n\
          | how the samples are pushed | ns per sample |\n|---|---:|\n\
          | `push` from one loop | {:.1} |\n\
          | `push` of the same type from a second place in the binary | {:.1} |\n\

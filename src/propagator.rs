@@ -151,6 +151,58 @@ pub(crate) fn checked_unit<T: Real>(q0: Quat<T>) -> Result<Quat<T>, Error> {
     q0.normalized().ok_or(Error::ZeroQuaternion)
 }
 
+/// The body of [`Propagator::push`], written once for `push` itself and for the loops of the bursts, which
+/// must inline it whatever the compiler decides for `push` (see `push_burst`). `$p` is the propagator
+/// (`self`, or the burst's local copy); the expansion returns `Err` from the enclosing function, committing
+/// nothing, or commits and evaluates to `Ok(())`.
+macro_rules! push_body {
+    ($p:ident, $sample:ident, $dt:ident) => {{
+        let (sample, dt) = ($sample, $dt);
+        // One compare pair for the common case; the cold path tells the errors apart.
+        if !(dt > T::ZERO && dt <= T::MAX) {
+            return Err(if dt.is_finite() {
+                Error::NonPositiveStep
+            } else {
+                Error::NonFiniteStep
+            });
+        }
+        let (input, step) = if A::CARRIES_LOW_PARTS {
+            $p.input.accept_split(&sample, dt)?
+        } else {
+            $p.input.accept(&sample, dt)?
+        };
+        if let Some((segment, h)) = step {
+            $p.scheme.check(&segment, h)?;
+            // Compute into locals (the accumulator is Copy), commit only on success.
+            let mut acc = $p.accumulator;
+            let advanced = acc.advance($p.q, &$p.scheme, &segment, h);
+            let pending = $p.counters.pending.saturating_add(1);
+            let (q, corrected) = match $p.stabilizer.correction(advanced, pending) {
+                Some(c) => (acc.add(advanced, c), true),
+                None => (advanced, false),
+            };
+            if !q.is_finite() {
+                return Err(Error::NonFiniteResult);
+            }
+            $p.q = q;
+            $p.accumulator = acc;
+            $p.counters.steps = $p.counters.steps.wrapping_add(1);
+            if corrected {
+                $p.counters.pending = 0;
+            } else {
+                $p.counters.uncorrected = $p.counters.uncorrected.wrapping_add(1);
+                $p.counters.pending = pending;
+            }
+        } else if let Some((segment, h)) = $p.input.pending_step(&sample, dt) {
+            // Kept for a later step: beyond the bound on its own, it would refuse every later step.
+            $p.scheme.check(&segment, h)?;
+        }
+        $p.input = input;
+        $p.count_saturated(&sample);
+        Ok(())
+    }};
+}
+
 impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     Propagator<T, S, I, Z, A>
 {
@@ -223,68 +275,14 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// In every case the propagator, its input model included, is unchanged.
     ///
     /// A loop runs fastest with one call site of `push` per propagator type: the compiler then inlines
-    /// it and can keep the state in registers (the Python binding's loop, with three, got a call and ran
-    /// 1.3x to 1.6x as long on an x86-64 host). It is not forced inline: a firmware that pushes from
-    /// many places would hold a copy of the step at each (the firmware's `stack` program then overflows
-    /// the M4F's flash).
+    /// it and can keep the state in registers (out of line, each call loads and stores the state:
+    /// about 1.5 times as long on an x86-64 host, docs/push-cost.md). It is not forced inline: a firmware
+    /// that pushes from many places would hold a copy of the step at each (the firmware's `stack` program
+    /// then overflows the M4F's flash). [`Propagator::push_burst`] and
+    /// [`Propagator::push_burst_timed`] always inline the step into their loop.
     #[inline]
     pub fn push(&mut self, sample: I::Sample, dt: T) -> Result<(), Error> {
-        // The whole state in and out at once: out of line, the next call's loads then meet stores of the
-        // same width and place (the CPU forwards them) instead of spanning the field-by-field stores of the
-        // last commit, which stalled every call (50 ns per sample on an x86-64 host against 20 inlined).
-        let mut next = *self;
-        next.step(sample, dt)?;
-        *self = next;
-        Ok(())
-    }
-
-    /// [`Propagator::push`]'s body, inlined into `push` and into each burst loop (so a burst costs no more
-    /// per sample than single pushes, however many places push the same type); on error `self` may be
-    /// partly changed, and the callers discard it.
-    #[inline(always)]
-    fn step(&mut self, sample: I::Sample, dt: T) -> Result<(), Error> {
-        // One compare pair for the common case; the cold path tells the errors apart.
-        if !(dt > T::ZERO && dt <= T::MAX) {
-            return Err(if dt.is_finite() {
-                Error::NonPositiveStep
-            } else {
-                Error::NonFiniteStep
-            });
-        }
-        let (input, step) = if A::CARRIES_LOW_PARTS {
-            self.input.accept_split(&sample, dt)?
-        } else {
-            self.input.accept(&sample, dt)?
-        };
-        if let Some((segment, h)) = step {
-            self.scheme.check(&segment, h)?;
-            // Compute into locals (the accumulator is Copy), commit only on success.
-            let mut acc = self.accumulator;
-            let advanced = acc.advance(self.q, &self.scheme, &segment, h);
-            let pending = self.counters.pending.saturating_add(1);
-            let (q, corrected) = match self.stabilizer.correction(advanced, pending) {
-                Some(c) => (acc.add(advanced, c), true),
-                None => (advanced, false),
-            };
-            if !q.is_finite() {
-                return Err(Error::NonFiniteResult);
-            }
-            self.q = q;
-            self.accumulator = acc;
-            self.counters.steps = self.counters.steps.wrapping_add(1);
-            if corrected {
-                self.counters.pending = 0;
-            } else {
-                self.counters.uncorrected = self.counters.uncorrected.wrapping_add(1);
-                self.counters.pending = pending;
-            }
-        } else if let Some((segment, h)) = self.input.pending_step(&sample, dt) {
-            // Kept for a later step: beyond the bound on its own, it would refuse every later step.
-            self.scheme.check(&segment, h)?;
-        }
-        self.input = input;
-        self.count_saturated(&sample);
-        Ok(())
+        push_body!(self, sample, dt)
     }
 
     /// Takes the first sample of a stream, which sets its time origin: there is no `dt` before it. The
@@ -340,17 +338,21 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         period: &mut FixedPeriod<T>,
     ) -> Result<usize, Refused> {
         // The state in locals for the whole burst, written back once (also after a refusal: the samples
-        // before it were taken).
+        // before it were taken), and the step inlined: through `push`, out of line where a binary pushes
+        // one type from several places, every sample would load and store the whole state (53 ns per
+        // sample on an x86-64 host against 34 for an inlined `push`).
         let mut p = *self;
         for (index, sample) in samples.iter().enumerate() {
             let dt = period.next_dt();
-            let mut next = p;
-            if let Err(error) = next.step(*sample, dt) {
+            let pushed = (|| {
+                let sample = *sample;
+                push_body!(p, sample, dt)
+            })();
+            if let Err(error) = pushed {
                 period.carry_over(dt);
                 *self = p;
                 return Err(Refused { index, error });
             }
-            p = next;
         }
         *self = p;
         Ok(samples.len())
@@ -386,22 +388,19 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         samples: &[(I::Sample, u32)],
         clock: &mut TickClock<T>,
     ) -> Result<usize, Refused> {
-        // As push_burst: the state in locals, written back once.
+        // As `push_burst`: the state in locals, the step inlined, written back once.
         let mut p = *self;
         for (index, (sample, timestamp)) in samples.iter().enumerate() {
-            let mut next = p;
-            let taken = clock.advance(*timestamp).and_then(|(advanced, dt)| {
+            let taken = clock.advance(*timestamp).and_then(|(next, dt)| {
+                let sample = *sample;
                 match dt {
-                    Some(dt) => next.step(*sample, dt)?,
-                    None => next.start(*sample)?,
+                    Some(dt) => (|| push_body!(p, sample, dt))()?,
+                    None => p.start(sample)?,
                 }
-                Ok(advanced)
+                Ok(next)
             });
             match taken {
-                Ok(advanced) => {
-                    *clock = advanced;
-                    p = next;
-                }
+                Ok(next) => *clock = next,
                 Err(error) => {
                     *self = p;
                     return Err(Refused { index, error });
