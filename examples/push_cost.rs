@@ -80,10 +80,10 @@ fn main() {
          hold a copy of the step at each), so from two places it is a call that loads and stores the whole \
          state every sample; each burst loop inlines the step with the state in locals.\n\n\
          | how the samples are pushed | ns per sample |\n|---|---:|\n\
-         | `push` from one loop | {:.1} |\n\
-         | `push` of the same type from a second place in the binary | {:.1} |\n\
+         | `push` in a loop (a call: this binary pushes the same type from two places) | {:.1} |\n\
+         | `push` in the second loop | {:.1} |\n\
          | `push_burst`, FIFO bursts of 32 at a fixed period | {:.1} |\n\n\
-         A burst sample costs {:.2} times a single push; the second call site {:.2} times the first. \
+         A burst sample costs {:.2} times a single push here; the second loop {:.2} times the first. \
          The Cortex-M4F's instruction counts for the same paths: docs/firmware.md.",
         best[0],
         best[1],
