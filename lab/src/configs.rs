@@ -7,13 +7,14 @@
 //! quatprop 0.2, a right-hand-side option of the Runge–Kutta schemes (`scheme::Baumgarte` with `stabilize::Off`):
 //! a Baumgarte configuration of an exponential-map scheme does not exist and is not built. Peers that exist as Rust
 //! crates are used as crates (`ahrs`, `nalgebra`, `glam`); Fusion (C) is implemented from its published
-//! formulas in [`crate::peers`].
+//! formulas in [`crate::peers`]. Each peer's wrapper here is checked against the same peer call in a plain
+//! loop ([`crate::peer_loops`]).
 //!
 //! Streams: a sample is a body rate (rad/s) and the time since the previous sample (s; ignored for the first
 //! sample of a stream). Each sample is one `Propagator::push`. Every step an integrator refuses is counted with
 //! its first error: nothing is dropped silently.
 
-use crate::peers;
+use crate::{peer_loops, peers};
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config as LibConfig, Configured, InputKind, Visit};
 use quatprop::input::InputModel;
@@ -49,8 +50,9 @@ pub enum Input {
     /// `input::Linear`: linear between the two samples bracketing the step.
     Linear,
     /// `input::History`: the cubic through the last four samples at their true times, fourth order, no
-    /// latency, under jitter too; only a gap (a dt more than 1.5 times the previous one, or less than its
-    /// inverse: a dropped sample) restarts it at the last sample, bridging that interval linearly.
+    /// latency, under jitter and across a dropped sample too; only a gap (a dt more than 2.5 times the
+    /// previous one, or less than its inverse: two or more samples missing) restarts it at the last sample,
+    /// bridging that interval linearly, and the start correction makes it fourth order again from there.
     History,
     /// `input::TwiceRate`: one step per two sample intervals with the quadratic through three samples (the
     /// same samples, half the steps).
@@ -145,6 +147,9 @@ pub enum Config {
         accumulator: Acc,
     },
     Peer(Peer),
+    /// A peer's plain hand-written loop (`crate::peer_loops`): the same peer call in the form its users write,
+    /// timed beside the peer's wrapper to check that the wrapper costs what the loop costs.
+    PeerLoop(Peer),
 }
 
 /// How a quatprop configuration adds its increments (`quatprop::accumulate`).
@@ -205,11 +210,13 @@ impl Config {
                 }
             ),
             Config::Peer(p) => p.name().into(),
+            Config::PeerLoop(p) => format!("plain loop: {}", p.name().trim_start_matches("peer: ")),
         }
     }
 
+    /// A peer, as wrapped for the studies or as its plain loop.
     pub fn is_peer(&self) -> bool {
-        matches!(self, Config::Peer(_))
+        matches!(self, Config::Peer(_) | Config::PeerLoop(_))
     }
 
     /// Whether quatprop has this configuration: Baumgarte wraps the Runge–Kutta schemes only.
@@ -249,14 +256,51 @@ impl Config {
                 accumulator,
             } => build_quatprop(method, stab, input, accumulator, q0)
                 .map_err(|e| format!("{}: {e}", self.label())),
-            Config::Peer(p) => T::peer(p, q0, nominal_dt).ok_or_else(|| {
-                format!(
-                    "{} has no {} version",
-                    p.name(),
-                    core::any::type_name::<T>()
-                )
-            }),
+            Config::Peer(p) => T::peer(p, q0, nominal_dt).ok_or_else(|| no_version::<T>(p)),
+            Config::PeerLoop(p) => match T::peer_loop(p, q0, nominal_dt, &[]) {
+                Some(_) => Ok(Box::new(PeerLoopRun {
+                    peer: p,
+                    q0,
+                    nominal_dt,
+                    samples: Vec::new(),
+                })),
+                None => Err(no_version::<T>(p)),
+            },
         }
+    }
+}
+
+fn no_version<T>(p: Peer) -> String {
+    format!(
+        "{} has no {} version",
+        p.name(),
+        core::any::type_name::<T>()
+    )
+}
+
+impl Config {
+    /// One timed run over a whole stream from `q0` (samples `samples[1].dt` apart): host ns per sample
+    /// interval, or `None` if there is no such integrator. A wrapper is built before the clock starts and fed
+    /// the stream in one `feed`; a peer's plain loop is one call. The attitude is kept from the optimizer.
+    pub fn time_run<T: LabReal>(&self, q0: Quat<T>, samples: &[Sample<T>]) -> Option<f64> {
+        use std::hint::black_box;
+        let n = samples.len().checked_sub(1).filter(|&n| n > 0)? as f64;
+        let dt = samples[1].dt;
+        let t0 = match *self {
+            Config::PeerLoop(p) => {
+                let t0 = std::time::Instant::now();
+                black_box(T::peer_loop(p, q0, dt, black_box(samples))?);
+                t0
+            }
+            _ => {
+                let mut r = self.build::<T>(q0, dt).ok()?;
+                let t0 = std::time::Instant::now();
+                r.feed(black_box(samples));
+                black_box(r.attitude());
+                t0
+            }
+        };
+        Some(t0.elapsed().as_nanos() as f64 / n)
     }
 }
 
@@ -331,9 +375,18 @@ pub trait Integrator<T> {
 }
 
 /// f32 and f64 as the lab needs them: quatprop's `Real` plus the peers' scalar types.
-pub trait LabReal: Real + nalgebra::RealField + Copy {
+/// (`nalgebra_ahrs::RealField`: the scalar trait of `ahrs`'s own nalgebra, a copy apart from the peers'.)
+pub trait LabReal: Real + nalgebra::RealField + nalgebra_ahrs::RealField + Copy {
     /// The peer's integrator in this precision, if the peer has one.
     fn peer(p: Peer, q0: Quat<Self>, nominal_dt: Self) -> Option<Box<dyn Integrator<Self>>>;
+    /// The peer's plain loop (`crate::peer_loops`) over a whole stream from `q0`: its attitude after the
+    /// last sample, if the peer has this precision.
+    fn peer_loop(
+        p: Peer,
+        q0: Quat<Self>,
+        nominal_dt: Self,
+        samples: &[Sample<Self>],
+    ) -> Option<Quat<Self>>;
 }
 
 impl LabReal for f32 {
@@ -345,6 +398,13 @@ impl LabReal for f32 {
                 prev: None,
             }),
             _ => nalgebra_peer(p, q0, nominal_dt)?,
+        })
+    }
+    fn peer_loop(p: Peer, q0: Quat<f32>, dt: f32, samples: &[Sample<f32>]) -> Option<Quat<f32>> {
+        Some(match p {
+            Peer::Fusion => peer_loops::fusion(q0, samples),
+            Peer::GlamScaledAxis => peer_loops::glam_scaled_axis(q0, samples),
+            _ => nalgebra_peer_loop(p, q0, dt, samples)?,
         })
     }
 }
@@ -359,6 +419,46 @@ impl LabReal for f64 {
             }),
             _ => nalgebra_peer(p, q0, nominal_dt)?,
         })
+    }
+    fn peer_loop(p: Peer, q0: Quat<f64>, dt: f64, samples: &[Sample<f64>]) -> Option<Quat<f64>> {
+        Some(match p {
+            Peer::Fusion => return None,
+            Peer::GlamScaledAxis => peer_loops::dglam_scaled_axis(q0, samples),
+            _ => nalgebra_peer_loop(p, q0, dt, samples)?,
+        })
+    }
+}
+
+/// The nalgebra-based peers' plain loops (`ahrs` and nalgebra), in either precision.
+fn nalgebra_peer_loop<T: LabReal>(
+    p: Peer,
+    q0: Quat<T>,
+    nominal_dt: T,
+    samples: &[Sample<T>],
+) -> Option<Quat<T>> {
+    Some(match p {
+        Peer::AhrsMadgwick => peer_loops::ahrs_madgwick(q0, nominal_dt, samples),
+        Peer::NalgebraRk4 => peer_loops::nalgebra_rk4(q0, samples),
+        Peer::NalgebraScaledAxis => peer_loops::nalgebra_scaled_axis(q0, samples),
+        Peer::Fusion | Peer::GlamScaledAxis => return None,
+    })
+}
+
+/// A peer's plain loop as an [`Integrator`] for the accuracy runs: it keeps the samples fed so far and runs
+/// the loop over all of them from the start for each attitude (so pieces change nothing). Its timed runs
+/// call the loop itself ([`Config::time_run`]), not this.
+struct PeerLoopRun<T> {
+    peer: Peer,
+    q0: Quat<T>,
+    nominal_dt: T,
+    samples: Vec<Sample<T>>,
+}
+impl<T: LabReal> Integrator<T> for PeerLoopRun<T> {
+    fn feed(&mut self, samples: &[Sample<T>]) {
+        self.samples.extend_from_slice(samples);
+    }
+    fn attitude(&self) -> Quat<T> {
+        T::peer_loop(self.peer, self.q0, self.nominal_dt, &self.samples).unwrap_or(self.q0)
     }
 }
 
@@ -520,6 +620,12 @@ const BAUMGARTE_RK_ONLY: &str =
     "Baumgarte is a right-hand-side option of the Runge–Kutta schemes only (quatprop 0.2)";
 
 // ------------------------------------------------------------------------------------------------ peers
+//
+// Every wrapper keeps its peer's state in locals for the whole `feed` and writes it back once at the end,
+// as a user's loop does: a store to `self` per sample lies under the next sample's wide load, which the CPU
+// cannot forward, and the steps stop overlapping (measured: nalgebra's and glam's `from_scaled_axis`
+// wrappers took twice their plain loops' time). `peer_loops.rs` holds the plain loops they are checked
+// against.
 
 struct FusionRun {
     q: Quat<f32>,
@@ -527,12 +633,14 @@ struct FusionRun {
 }
 impl Integrator<f32> for FusionRun {
     fn feed(&mut self, samples: &[Sample<f32>]) {
+        let (mut q, mut prev) = (self.q, self.prev);
         for s in samples {
-            if self.prev {
-                self.q = peers::fusion_euler(self.q, s.w, s.dt);
+            if prev {
+                q = peers::fusion_euler(q, s.w, s.dt);
             }
-            self.prev = true;
+            prev = true;
         }
+        (self.q, self.prev) = (q, prev);
     }
     fn attitude(&self) -> Quat<f32> {
         self.q
@@ -545,14 +653,16 @@ struct GlamRun {
 }
 impl Integrator<f32> for GlamRun {
     fn feed(&mut self, samples: &[Sample<f32>]) {
+        let (mut q, mut prev) = (self.q, self.prev);
         for s in samples {
-            if let Some(w0) = self.prev {
+            if let Some(w0) = prev {
                 let v = (w0 + s.w) * (0.5 * s.dt);
                 let v = glam::Vec3::from(mint::Vector3::from(v));
-                self.q = (self.q * glam::Quat::from_scaled_axis(v)).normalize();
+                q = (q * glam::Quat::from_scaled_axis(v)).normalize();
             }
-            self.prev = Some(s.w);
+            prev = Some(s.w);
         }
+        (self.q, self.prev) = (q, prev);
     }
     fn attitude(&self) -> Quat<f32> {
         Quat::from_mint(self.q)
@@ -565,14 +675,16 @@ struct DGlamRun {
 }
 impl Integrator<f64> for DGlamRun {
     fn feed(&mut self, samples: &[Sample<f64>]) {
+        let (mut q, mut prev) = (self.q, self.prev);
         for s in samples {
-            if let Some(w0) = self.prev {
+            if let Some(w0) = prev {
                 let v = (w0 + s.w) * (0.5 * s.dt);
                 let v = glam::DVec3::from(mint::Vector3::from(v));
-                self.q = (self.q * glam::DQuat::from_scaled_axis(v)).normalize();
+                q = (q * glam::DQuat::from_scaled_axis(v)).normalize();
             }
-            self.prev = Some(s.w);
+            prev = Some(s.w);
         }
+        (self.q, self.prev) = (q, prev);
     }
     fn attitude(&self) -> Quat<f64> {
         Quat::from_mint(self.q)
@@ -583,14 +695,28 @@ type NaQuat<T> = nalgebra::UnitQuaternion<T>;
 
 // The conversions go through `mint` (quatprop's `mint` feature, nalgebra's `convert-mint`): component
 // order and the scalar's place are the crates' business, not the lab's.
-fn to_na<T: LabReal>(q: Quat<T>) -> NaQuat<T> {
+pub fn to_na<T: LabReal>(q: Quat<T>) -> NaQuat<T> {
     NaQuat::new_normalize(nalgebra::Quaternion::from(mint::Quaternion::from(q)))
 }
-fn from_na<T: LabReal>(q: &NaQuat<T>) -> Quat<T> {
+pub fn from_na<T: LabReal>(q: &NaQuat<T>) -> Quat<T> {
     Quat::from_mint(*q.quaternion())
 }
-fn na_vec<T: LabReal>(v: Vec3<T>) -> nalgebra::Vector3<T> {
+pub fn na_vec<T: LabReal>(v: Vec3<T>) -> nalgebra::Vector3<T> {
     nalgebra::Vector3::from(mint::Vector3::from(v))
+}
+
+// `ahrs` 0.8 takes its own nalgebra's (0.34) types, a copy apart from the nalgebra peers' (lab/Cargo.toml):
+// converted component by component.
+type AhrsQuat<T> = nalgebra_ahrs::UnitQuaternion<T>;
+pub fn to_ahrs<T: LabReal>(q: Quat<T>) -> AhrsQuat<T> {
+    AhrsQuat::new_normalize(nalgebra_ahrs::Quaternion::new(q.w, q.x, q.y, q.z))
+}
+pub fn from_ahrs<T: LabReal>(q: &AhrsQuat<T>) -> Quat<T> {
+    let q = q.quaternion();
+    Quat::new(q.w, q.i, q.j, q.k)
+}
+pub fn ahrs_vec<T: LabReal>(v: Vec3<T>) -> nalgebra_ahrs::Vector3<T> {
+    nalgebra_ahrs::Vector3::new(v.x, v.y, v.z)
 }
 
 fn nalgebra_peer<T: LabReal>(
@@ -600,7 +726,7 @@ fn nalgebra_peer<T: LabReal>(
 ) -> Option<Box<dyn Integrator<T>>> {
     Some(match p {
         Peer::AhrsMadgwick => Box::new(AhrsRun {
-            m: ahrs::Madgwick::new_with_quat(nominal_dt, T::ZERO, to_na(q0)),
+            m: ahrs::Madgwick::new_with_quat(nominal_dt, T::ZERO, to_ahrs(q0)),
             prev: false,
         }),
         Peer::NalgebraRk4 => Box::new(NalgebraRk4Run {
@@ -624,15 +750,17 @@ struct AhrsRun<T: LabReal> {
 impl<T: LabReal> Integrator<T> for AhrsRun<T> {
     fn feed(&mut self, samples: &[Sample<T>]) {
         use ahrs::Ahrs as _;
-        for s in samples {
-            if self.prev {
-                self.m.update_gyro(&na_vec(s.w));
-            }
-            self.prev = true;
+        let mut m = self.m;
+        // The stream's first sample only starts it.
+        let from = usize::from(!self.prev).min(samples.len());
+        for s in &samples[from..] {
+            m.update_gyro(&ahrs_vec(s.w));
         }
+        self.m = m;
+        self.prev |= !samples.is_empty();
     }
     fn attitude(&self) -> Quat<T> {
-        from_na(&self.m.quat)
+        from_ahrs(&self.m.quat)
     }
 }
 
@@ -646,21 +774,23 @@ impl<T: LabReal> Integrator<T> for NalgebraRk4Run<T> {
         let f = |y: &nalgebra::Quaternion<T>, w: Vec3<T>| {
             y * nalgebra::Quaternion::from_imag(na_vec(w * half))
         };
+        let (mut q_run, mut prev) = (self.q, self.prev);
         for s in samples {
-            if let Some(w0) = self.prev {
+            if let Some(w0) = prev {
                 let (w1, h) = (s.w, s.dt);
                 let wm = (w0 + w1) * half;
-                let q = self.q.into_inner();
+                let q = q_run.into_inner();
                 let k1 = f(&q, w0);
                 let k2 = f(&(q + k1 * (h * half)), wm);
                 let k3 = f(&(q + k2 * (h * half)), wm);
                 let k4 = f(&(q + k3 * h), w1);
                 let two = T::TWO;
                 let six = <T as Real>::from_f64(6.0);
-                self.q = NaQuat::new_normalize(q + (k1 + k2 * two + k3 * two + k4) * (h / six));
+                q_run = NaQuat::new_normalize(q + (k1 + k2 * two + k3 * two + k4) * (h / six));
             }
-            self.prev = Some(s.w);
+            prev = Some(s.w);
         }
+        (self.q, self.prev) = (q_run, prev);
     }
     fn attitude(&self) -> Quat<T> {
         from_na(&self.q)
@@ -673,13 +803,21 @@ struct NalgebraAxisRun<T: LabReal> {
 }
 impl<T: LabReal> Integrator<T> for NalgebraAxisRun<T> {
     fn feed(&mut self, samples: &[Sample<T>]) {
-        for s in samples {
-            if let Some(w0) = self.prev {
-                let v = (w0 + s.w) * (T::HALF * s.dt);
-                self.q *= NaQuat::from_scaled_axis(na_vec(v));
-            }
-            self.prev = Some(s.w);
+        let (Some(first), Some(last)) = (samples.first(), samples.last()) else {
+            return;
+        };
+        let mut q = self.q;
+        // The interval from the previous piece's last sample, then the piece's own intervals: the plain
+        // loop's shape (a rate carried in an `Option` through the loop cost twice the loop's time: with the
+        // sin/cos calls in between it lives on the stack, stored per sample and loaded wide).
+        if let Some(w0) = self.prev {
+            q *= NaQuat::from_scaled_axis(na_vec((w0 + first.w) * (T::HALF * first.dt)));
         }
+        for pair in samples.windows(2) {
+            let v = (pair[0].w + pair[1].w) * (T::HALF * pair[1].dt);
+            q *= NaQuat::from_scaled_axis(na_vec(v));
+        }
+        (self.q, self.prev) = (q, Some(last.w));
     }
     fn attitude(&self) -> Quat<T> {
         from_na(&self.q)

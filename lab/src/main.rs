@@ -8,10 +8,10 @@
 //!
 //! Layout: `studies/` holds one file per study and the registry (`studies/mod.rs`); `study.rs` says what a
 //! study is; `cli.rs`, `report.rs` and `outputs.rs` are the command line, the report being written and the
-//! check of its files; the rest is what studies share: configurations and peers (`configs.rs`, `peers.rs`),
-//! scenes and their exact references (`scenes.rs`, `rigid_body.rs`, `dd.rs`), unchecked steps
-//! (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`, `timing.rs`), CSV and tables
-//! (`table.rs`) and plots (`plot.rs`).
+//! check of its files; the rest is what studies share: configurations and peers (`configs.rs`, `peers.rs`,
+//! `peer_loops.rs`), scenes and their exact references (`scenes.rs`, `rigid_body.rs`, `dd.rs`,
+//! `recorded.rs`), unchecked steps (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`,
+//! `timing.rs`), CSV and tables (`table.rs`) and plots (`plot.rs`).
 
 mod cli;
 mod configs;
@@ -19,9 +19,11 @@ mod dd;
 #[cfg(test)]
 mod example_study;
 mod outputs;
+mod peer_loops;
 mod peers;
 mod plot;
 mod quiet;
+mod recorded;
 mod report;
 mod rigid_body;
 mod rng;

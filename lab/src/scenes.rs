@@ -148,6 +148,91 @@ pub fn spin_1e4() -> Sandwich {
     }
 }
 
+/// A random smooth motion: `q(t) = exp_q(φ(t))` with each component of the rotation vector φ a sum of four
+/// sinusoids of random frequency (0.05 to 0.8 Hz), amplitude and phase (a fixed seed), scaled so that
+/// |φ'| ≤ 1.5 rad/s per axis: |ω| ≤ |φ'| ≤ 2.6 rad/s. Exact: the body rate is `J_r(φ) φ'` with the right
+/// Jacobian of the exponential map, `J_r(φ) = I − (1 − cos θ)/θ² [φ]× + (θ − sin θ)/θ³ [φ]×²`, θ = |φ|.
+pub struct RandomSmooth {
+    /// Per axis: (amplitude (rad), angular frequency (rad/s), phase (rad)) of each sinusoid.
+    terms: [[(f64, f64, f64); 4]; 3],
+}
+
+impl RandomSmooth {
+    pub fn new() -> Self {
+        let mut rng = crate::rng::Rng(0x005E_ED0F_5A00_7E00);
+        let mut terms = [[(0.0, 0.0, 0.0); 4]; 3];
+        for axis in &mut terms {
+            let mut raw = [(0.0, 0.0, 0.0); 4];
+            for t in &mut raw {
+                let f = 0.05 + 0.75 * rng.uniform();
+                *t = (
+                    0.2 + rng.uniform(),
+                    2.0 * core::f64::consts::PI * f,
+                    2.0 * core::f64::consts::PI * rng.uniform(),
+                );
+            }
+            // Σ amplitude·frequency = 1.5 rad/s: the bound on |φ'| per axis.
+            let peak: f64 = raw.iter().map(|&(a, w, _)| a * w).sum();
+            for (t, r) in axis.iter_mut().zip(raw) {
+                *t = (r.0 * 1.5 / peak, r.1, r.2);
+            }
+        }
+        Self { terms }
+    }
+
+    /// φ(t) and φ'(t).
+    fn phi(&self, t: f64) -> (Vec3<f64>, Vec3<f64>) {
+        let mut p = [0.0; 3];
+        let mut d = [0.0; 3];
+        for (i, axis) in self.terms.iter().enumerate() {
+            for &(a, w, ph) in axis {
+                let (s, c) = (w * t + ph).sin_cos();
+                p[i] += a * s;
+                d[i] += a * w * c;
+            }
+        }
+        (Vec3::new(p[0], p[1], p[2]), Vec3::new(d[0], d[1], d[2]))
+    }
+}
+
+impl Default for RandomSmooth {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Scene for RandomSmooth {
+    fn key(&self) -> &'static str {
+        "random"
+    }
+    fn name(&self) -> &'static str {
+        "random smooth motion, up to 2.6 rad/s"
+    }
+    fn attitude(&self, t: f64) -> Quat<f64> {
+        exp_q(self.phi(t).0)
+    }
+    fn rate(&self, t: f64) -> Vec3<f64> {
+        let (p, d) = self.phi(t);
+        let th = p.norm();
+        // (1 − cos θ)/θ² = 2 sin²(θ/2)/θ² (no cancellation); (θ − sin θ)/θ³ by its series below 0.1 rad
+        // (first omitted term θ⁸/39916800 < 3e-16).
+        let c1 = if th < 1e-8 {
+            0.5
+        } else {
+            let s = (0.5 * th).sin();
+            2.0 * s * s / (th * th)
+        };
+        let c2 = if th < 0.1 {
+            let t2 = th * th;
+            1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0 - t2 * t2 * t2 / 362_880.0
+        } else {
+            (th - th.sin()) / (th * th * th)
+        };
+        let pxd = p.cross(d);
+        d - pxd * c1 + p.cross(pxd) * c2
+    }
+}
+
 /// The default sweep: 20.37 s (not a whole number of any scene's periods) at 100 Hz to 4 kHz.
 pub const DEFAULT_SWEEP: Sweep = Sweep {
     horizon: 20.37,
@@ -228,6 +313,9 @@ pub fn catalogue(horizon: f64) -> Vec<Box<dyn Scene>> {
         Box::new(spin_1e4()),
         Box::new(RateStep),
         Box::new(EarthRate),
+        Box::new(RandomSmooth::new()),
+        Box::new(crate::recorded::RecordedMotion::broad()),
+        Box::new(crate::recorded::RecordedMotion::broad_low_passed()),
     ]
 }
 
@@ -254,6 +342,7 @@ mod tests {
             Box::new(fast_spin()),
             Box::new(spin_1e4()),
             Box::new(EarthRate),
+            Box::new(RandomSmooth::new()),
         ];
         for s in &scenes {
             for &t in &[0.1, 0.77, 3.3] {

@@ -388,9 +388,10 @@ fn sensor_study(ctx: &mut Ctx, scenes: &[Box<dyn Scene>], opt: &Sweep, horizon: 
          for ideal samples it is the motion to the first row's second number's precision or better; f64 Magnus-4, \
          16 substeps per interval; 8 substeps agree to {ref_check:.1e} rad). Dropped samples arrive as a longer dt (nothing is \
          skipped by the integrator); jitter perturbs each interval by up to ±10% with known timestamps. The sample \
-         history takes the samples at their true times (a cubic in Newton form under jitter, still fourth order); \
-         only a gap (a dt more than 1.5 times the previous one, or less than its inverse) restarts it, bridging \
-         that interval with a linear step over its true length, after which it builds up its order again. `ahrs` has no \
+         history takes the samples at their true times (a cubic in Newton form under jitter and across a dropped \
+         sample, still fourth order); only a gap (a dt more than 2.5 times the previous one, or less than its \
+         inverse) restarts it, bridging that interval with a linear step over its true length, after which it \
+         starts again at fourth order (its quadratic step corrects the linear one before it). `ahrs` has no \
          time argument (a fixed `sample_period`), so gaps and jitter are invisible to it. Noise and bias models are \
          MPU-6000 class; the 2000 °/s roll exceeds a ±1000 °/s range on the roll axis, so those readings clip.\n\n{table}\n\
          Reading: the first number is what the integrator adds to the sensor's own error; the second is what the \
