@@ -220,3 +220,27 @@ fn numbers_that_overflow_the_running_means_teach_nothing() {
     }
     assert_eq!(e.bias(), Vec3::new(1.0, 0.0, 0.0)); // the change was never adopted
 }
+
+/// A sample whose corrected rate overflows (a huge sample minus a huge bias) is motion: it ends the still
+/// window in `learn` as in 0.2's `update`. The `correct`/`learn` split ignored such a sample, so the window
+/// went on and closed one sample late (fuzz/frontend, `fuzz/regressions/frontend/crash-52fd…`).
+#[test]
+fn an_overflowing_corrected_rate_ends_the_still_window() {
+    use quatprop::frontend::BiasEstimator;
+    use quatprop::{GyroSample, Vec3};
+    let est = BiasEstimator::<f64>::from_samples(2, f64::MAX, 64)
+        .and_then(|e| e.with_change(f64::MAX))
+        .and_then(|e| e.with_initial(Vec3::new(0.0, -1e308, 0.0)))
+        .unwrap();
+    let mut a = est;
+    // Still (d = 0), then d = 2e308 = ∞ (motion), then still again: a window of 2 must not close.
+    a.update(GyroSample::new(Vec3::new(0.0, -1e308, 0.0)))
+        .unwrap();
+    let out = a
+        .update(GyroSample::new(Vec3::new(0.0, 1e308, 0.0)))
+        .unwrap();
+    assert!(out.rate.y.is_infinite());
+    a.update(GyroSample::new(Vec3::new(0.1, -1e308, 0.0)))
+        .unwrap();
+    assert_eq!(a.bias(), est.bias());
+}

@@ -438,14 +438,16 @@ impl<T: Real> BiasEstimator<T> {
 
     /// Learns from `corrected`, what [`BiasEstimator::correct`] returned for a sample with `aux`, if the
     /// body is still: the second half of [`BiasEstimator::update_with`]. Give it exactly that, before
-    /// anything else changes the estimator (a non-finite input is ignored).
+    /// anything else changes the estimator (a non-finite `aux` is ignored; a non-finite rate, the
+    /// difference of a huge sample and a huge bias, is motion: it ends the window, as in `update_with`).
     #[inline]
     pub fn learn(&mut self, corrected: GyroSample<T>, aux: Aux<T>) {
         let d = corrected.rate;
-        if !(d.is_finite() && aux.is_finite()) {
+        if !aux.is_finite() {
             return;
         }
         let g = self.gate;
+        // A NaN or infinite component fails the gate: not still.
         let mut still = !corrected.saturated && d.x.abs() <= g && d.y.abs() <= g && d.z.abs() <= g;
         if let (Some(ga), Some(a)) = (self.accel_gate, aux.accel) {
             match self.accel_reference {
