@@ -240,15 +240,8 @@ fn main() {
                 let max = errs.iter().copied().fold(0.0, f64::max);
                 constant_rate.push((acc, *errs.last().unwrap(), max));
             }
-            write!(md, "| {mname} | {input} | {acc} |").unwrap();
-            for e in &errs {
-                write!(md, " {e:.2e} |").unwrap();
-            }
-            let slope = if errs.len() > 1 {
-                (errs[errs.len() - 1] / errs[0]).log10() / (errs.len() - 1) as f64
-            } else {
-                f64::NAN
-            };
+            write!(md, "| {mname} | {input} | {acc} |{}", error_cells(&errs)).unwrap();
+            let slope = growth(&errs);
             let cost = m4f
                 .iter()
                 .find(|(a, i, _)| a == acc && i.eq_ignore_ascii_case(input))
@@ -341,16 +334,13 @@ fn main() {
     ] {
         let (fixed, f32) = run_counts(m, &checkpoints);
         for (label, errs) in [("`Q30Propagator` (Q30)", fixed), ("recommended, f32", f32)] {
-            write!(md, "| {mname} | {label} |").unwrap();
-            for e in &errs {
-                write!(md, " {e:.2e} |").unwrap();
-            }
-            let slope = if errs.len() > 1 {
-                (errs[errs.len() - 1] / errs[0]).log10() / (errs.len() - 1) as f64
-            } else {
-                f64::NAN
-            };
-            writeln!(md, " {slope:.2} |").unwrap();
+            let slope = growth(&errs);
+            writeln!(
+                md,
+                "| {mname} | {label} |{} {slope:.2} |",
+                error_cells(&errs)
+            )
+            .unwrap();
         }
     }
     writeln!(
@@ -363,6 +353,19 @@ fn main() {
     print!("{md}");
     if let Some(dir) = out_dir {
         std::fs::write(format!("{dir}/own_error.md"), md).unwrap();
+    }
+}
+
+/// The checkpoints' errors as table cells.
+fn error_cells(errs: &[f64]) -> String {
+    errs.iter().map(|e| format!(" {e:.2e} |")).collect()
+}
+
+/// The growth exponent of the errors over the decades of the checkpoints (NaN for one checkpoint).
+fn growth(errs: &[f64]) -> f64 {
+    match errs {
+        [first, .., last] => (last / first).log10() / (errs.len() - 1) as f64,
+        _ => f64::NAN,
     }
 }
 
