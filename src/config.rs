@@ -45,7 +45,7 @@ use crate::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
 };
 use crate::stabilize::{Stabilizer, StabilizerKind};
-use crate::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Refused};
+use crate::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Refused, Vec3};
 
 /// The input model of a [`Config`] ([`crate::input`]): what is known of ω inside a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -749,6 +749,67 @@ impl<T: Real> Configured<T> {
             AccumulatorState::FloatFloat(a) => a.reset(),
         }
         self.counters.attitude_replaced();
+        Ok(())
+    }
+
+    /// [`Propagator::rotate_body`]: `q ← q ⊗ exp_q(dtheta)`, a correction in the body frame (rad).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] or [`Error::NonFiniteResult`]; the propagator is then unchanged.
+    pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
+        if !dtheta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        let d = self.q * Quat::rotation_increment(dtheta);
+        self.add_correction(d)
+    }
+
+    /// [`Propagator::rotate_reference`]: `q ← exp_q(dtheta) ⊗ q`, a correction in the reference frame
+    /// (rad).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] or [`Error::NonFiniteResult`]; the propagator is then unchanged.
+    pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
+        if !dtheta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        let d = Quat::rotation_increment(dtheta) * self.q;
+        self.add_correction(d)
+    }
+
+    /// A correction's increment added through the accumulator, as [`Propagator::rotate_body`] does.
+    fn add_correction(&mut self, d: Quat<T>) -> Result<(), Error> {
+        let mut acc = self.accumulator;
+        let q = match &mut acc {
+            AccumulatorState::Plain(a) => a.add(self.q, d),
+            AccumulatorState::Kahan(a) => a.add(self.q, d),
+            AccumulatorState::FloatFloat(a) => a.add(self.q, d),
+        };
+        if !q.is_finite() {
+            return Err(Error::NonFiniteResult);
+        }
+        self.q = q;
+        self.accumulator = acc;
+        Ok(())
+    }
+
+    /// [`Propagator::correct_bias`]: the samples the input model keeps lowered by `delta` (rad/s), the
+    /// bias correction an estimator also subtracts from the samples from now on.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`]; the propagator is then unchanged.
+    pub fn correct_bias(&mut self, delta: Vec3<T>) -> Result<(), Error> {
+        if !delta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        self.input = match &self.input {
+            InputState::Hold(i) => InputState::Hold(InputModel::<T>::correct_bias(i, delta)?),
+            InputState::Linear(i) => InputState::Linear(i.correct_bias(delta)?),
+            InputState::History(i) => InputState::History(i.correct_bias(delta)?),
+            InputState::TwiceRate(i) => InputState::TwiceRate(i.correct_bias(delta)?),
+            InputState::GaussPoints(i) => InputState::GaussPoints(i.correct_bias(delta)?),
+            InputState::DeltaAngles(i) => InputState::DeltaAngles(i.correct_bias(delta)?),
+        };
         Ok(())
     }
 

@@ -75,6 +75,13 @@ pub enum Error {
     /// A sample of the other kind: a rate sample for a [`crate::config::Configured`] propagator whose input
     /// model takes delta angles, or a delta angle for one that takes rates.
     WrongSampleKind,
+    /// A noise parameter (a density, a correlation time, a measurement variance) is negative, zero where
+    /// it must be positive, NaN or infinite ([`crate::error_state::GyroNoise`],
+    /// [`crate::covariance::Ud::update`]).
+    InvalidNoise,
+    /// A covariance is not what it claims: not finite, not symmetric, or not positive semi-definite
+    /// ([`crate::covariance::Ud::from_matrix`]), or a matrix given to its predict step is not finite.
+    InvalidCovariance,
 }
 
 impl fmt::Display for Error {
@@ -118,6 +125,12 @@ impl fmt::Display for Error {
             }
             Error::WrongSampleKind => f.write_str(
                 "sample of the wrong kind: rates for a delta-angle input model, or delta angles for a rate one",
+            ),
+            Error::InvalidNoise => {
+                f.write_str("noise parameter or variance is negative, zero where it must be positive, or not finite")
+            }
+            Error::InvalidCovariance => f.write_str(
+                "covariance is not finite, not symmetric or not positive semi-definite",
             ),
         }
     }

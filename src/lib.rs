@@ -10,8 +10,10 @@
 pub mod accumulate;
 pub mod config;
 mod convert;
+pub mod covariance;
 mod dispatch;
 mod error;
+pub mod error_state;
 mod exact;
 pub mod fixed;
 pub mod frontend;

@@ -7,7 +7,7 @@ use crate::input::{History, InputModel};
 use crate::sample::Sample;
 use crate::scheme::{ExpMap, Scheme};
 use crate::stabilize::{FirstOrder, Stabilizer};
-use crate::{Error, Quat, Real};
+use crate::{Error, Quat, Real, Vec3};
 
 /// Propagates a body-to-reference attitude quaternion from body-frame gyro samples.
 ///
@@ -443,6 +443,113 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         self.q = checked_unit(q)?;
         self.accumulator.reset();
         self.counters.attitude_replaced();
+        Ok(())
+    }
+
+    /// Rotates the attitude by the small rotation `dtheta` (rotation vector, rad) given in the **body**
+    /// frame: `q ← q ⊗ exp_q(dtheta)`. An error-state filter's update with the attitude error defined as
+    /// `q_true = q ⊗ exp_q(δθ)` (the convention of [`crate::error_state`]) applies its estimate this way.
+    ///
+    /// Nothing else changes: the input model keeps its samples (they are body rates, which a change of
+    /// attitude does not move), the counters stay, and the accumulator keeps what it carries. The rotation
+    /// is added through the accumulator as a step's increment is (`q + q ⊗ (exp_q(dtheta) − 1)`), so a
+    /// [`Kahan`](crate::accumulate::Kahan) or [`FloatFloat`](crate::accumulate::FloatFloat) low part
+    /// stays in the sum; that low part is not itself rotated (it is below an ulp of `q`, and its rotation
+    /// by `dtheta` changes it by less than `|dtheta|` times that). The norm is left to the next step's
+    /// stabilizer, as after a step (the rotation is unit to within rounding).
+    ///
+    /// ```
+    /// use quatprop::{Propagator, Quat, Vec3};
+    /// let tilted = Quat::from_rotation_vector(Vec3::new(0.1, 0.0, 0.0_f64)); // rolled 0.1 rad
+    /// let mut p = Propagator::recommended(tilted)?;
+    /// p.rotate_body(Vec3::new(0.0, 0.0, 0.2))?; // yaw about the body's own z
+    /// let expected = tilted * Quat::from_rotation_vector(Vec3::new(0.0, 0.0, 0.2));
+    /// assert!(p.attitude().angle_to(expected) < 1e-15);
+    /// # Ok::<(), quatprop::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] for a NaN or infinite component; [`Error::NonFiniteResult`] if the
+    /// result is not finite. The propagator is then unchanged.
+    pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
+        if !dtheta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        let d = self.q * Quat::rotation_increment(dtheta);
+        self.add_correction(d)
+    }
+
+    /// Rotates the attitude by the small rotation `dtheta` (rotation vector, rad) given in the
+    /// **reference** frame: `q ← exp_q(dtheta) ⊗ q`. For a filter whose attitude error is defined in the
+    /// reference frame (`q_true = exp_q(δθ) ⊗ q`, as in PX4's EKF2). Otherwise as
+    /// [`Propagator::rotate_body`].
+    ///
+    /// ```
+    /// use quatprop::{Propagator, Quat, Vec3};
+    /// let tilted = Quat::from_rotation_vector(Vec3::new(0.1, 0.0, 0.0_f64));
+    /// let mut p = Propagator::recommended(tilted)?;
+    /// p.rotate_reference(Vec3::new(0.0, 0.0, 0.2))?; // yaw about the reference z (heading)
+    /// let expected = Quat::from_rotation_vector(Vec3::new(0.0, 0.0, 0.2)) * tilted;
+    /// assert!(p.attitude().angle_to(expected) < 1e-15);
+    /// # Ok::<(), quatprop::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Propagator::rotate_body`].
+    pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
+        if !dtheta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        let d = Quat::rotation_increment(dtheta) * self.q;
+        self.add_correction(d)
+    }
+
+    /// Adds a correction's increment `d` through the accumulator; commits only a finite result.
+    fn add_correction(&mut self, d: Quat<T>) -> Result<(), Error> {
+        let mut acc = self.accumulator;
+        let q = acc.add(self.q, d);
+        if !q.is_finite() {
+            return Err(Error::NonFiniteResult);
+        }
+        self.q = q;
+        self.accumulator = acc;
+        Ok(())
+    }
+
+    /// The bias subtracted from the samples grew by `delta` (rad/s, body axes): an estimator's bias
+    /// correction, given here so that the samples the input model keeps for its next steps (corrected with
+    /// the old bias) are lowered by `delta` too ([`InputModel::correct_bias`]). Subtract the same `delta`
+    /// from the samples from now on (e.g. [`FixedBias::correct`](crate::frontend::FixedBias::correct),
+    /// or [`BiasEstimator::correct_bias`](crate::frontend::BiasEstimator::correct_bias)): the next step then
+    /// integrates rates that all carry the new bias, where a model left alone would see a jump of
+    /// `delta` between its kept samples and the new ones (a cubic through a step, for [`History`]). The
+    /// attitude, accumulator and counters stay.
+    ///
+    /// ```
+    /// use quatprop::{frontend::FixedBias, GyroSample, Propagator, Quat, Vec3};
+    /// let mut p = Propagator::recommended(Quat::IDENTITY)?;
+    /// let mut bias = FixedBias::new(Vec3::ZERO)?;
+    /// let raw = GyroSample::new(Vec3::new(0.0, 0.0, 1.01_f64)); // 1 rad/s and a 0.01 rad/s bias
+    /// for _ in 0..10 {
+    ///     p.push(bias.apply(raw), 1.0e-3)?;
+    /// }
+    /// let delta = Vec3::new(0.0, 0.0, 0.01); // an estimator's update finds the bias
+    /// bias = bias.correct(delta)?;
+    /// p.correct_bias(delta)?;
+    /// let before = p.attitude();
+    /// p.push(bias.apply(raw), 1.0e-3)?; // 1 rad/s exactly, history included: 1 mrad
+    /// assert!((before.angle_to(p.attitude()) - 1.0e-3).abs() < 1e-15);
+    /// # Ok::<(), quatprop::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] for a NaN or infinite component, or one that makes a kept sample so; the
+    /// propagator is then unchanged.
+    pub fn correct_bias(&mut self, delta: Vec3<T>) -> Result<(), Error> {
+        if !delta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        self.input = self.input.correct_bias(delta)?;
         Ok(())
     }
 

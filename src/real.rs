@@ -43,6 +43,9 @@ pub(crate) mod sealed {
         /// `w² + x² + y² + z² − 1` with its own rounding error far below ε (`f32`: in `f64`, where the
         /// squares are exact; `f64`: compensated with `fma`). Telemetry only, never on the step path.
         fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
+        /// The Taylor coefficients of the error-state step's five functions of `|φ|²`
+        /// (`crate::error_state`), rounded once at compile time.
+        const STEP_SERIES: [[Self; crate::error_state::SERIES_TERMS]; 5];
         /// Converts an integer (rounds to nearest beyond 2²⁴ for `f32`): one instruction with an FPU.
         fn from_i32(v: i32) -> Self;
         /// Converts to an integer (toward zero, saturating): one instruction with an FPU.
@@ -141,6 +144,20 @@ macro_rules! impl_real {
             fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self {
                 $sum_sq(w, x, y, z)
             }
+            const STEP_SERIES: [[Self; crate::error_state::SERIES_TERMS]; 5] = {
+                let t = crate::error_state::STEP_SERIES;
+                let mut out = [[0.0; crate::error_state::SERIES_TERMS]; 5];
+                let mut f = 0;
+                while f < 5 {
+                    let mut k = 0;
+                    while k < crate::error_state::SERIES_TERMS {
+                        out[f][k] = t[f][k] as $t;
+                        k += 1;
+                    }
+                    f += 1;
+                }
+                out
+            };
             #[inline(always)]
             fn from_i32(v: i32) -> Self {
                 v as $t

@@ -45,6 +45,16 @@ impl<T: Real> FixedBias<T> {
     pub fn bias(&self) -> Vec3<T> {
         self.bias
     }
+
+    /// The offset moved by `delta` (rad/s): an estimator's bias correction. Give the same `delta` to
+    /// [`Propagator::correct_bias`](crate::Propagator::correct_bias), so the samples the input model keeps
+    /// move with it.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] if `delta` or the new offset is NaN or infinite.
+    pub fn correct(self, delta: Vec3<T>) -> Result<Self, Error> {
+        Self::new(self.bias + delta)
+    }
 }
 
 /// Learns the gyro bias while the body is still, follows it when it changes, and subtracts it.
@@ -347,6 +357,37 @@ impl<T: Real> BiasEstimator<T> {
         self.candidate = None;
         self.restart_window();
         Ok(self)
+    }
+
+    /// Moves the estimate by `delta` (rad/s): an estimator's bias correction (a filter that also observes
+    /// the bias in motion). The learned windows' measurements move with it: the running mean, a change
+    /// waiting to be confirmed, and the bias(T) line's intercept (its slope stays); the window being
+    /// summed restarts (its samples were corrected with the old estimate). Give the same `delta` to
+    /// [`Propagator::correct_bias`](crate::Propagator::correct_bias), so the samples the input model keeps
+    /// move with it.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] if `delta` is NaN or infinite or the moved estimate overflows; the
+    /// estimator is then unchanged.
+    pub fn correct_bias(&mut self, delta: Vec3<T>) -> Result<(), Error> {
+        if !delta.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        let mut next = *self;
+        next.bias += delta;
+        if let Some(c) = &mut next.candidate {
+            c.bias += delta;
+        }
+        if let Some(th) = &mut next.thermal {
+            th.sum_b += delta * th.weight;
+            th.sum_tb += delta * th.sum_t;
+        }
+        next.restart_window();
+        if !next.is_finite() {
+            return Err(Error::NonFiniteRate);
+        }
+        *self = next;
+        Ok(())
     }
 
     /// The current bias estimate (rad/s; zero before the first still window): the running mean of the

@@ -192,4 +192,23 @@ pub trait InputModel<T: Real>: Copy {
 
     /// Forgets every sample kept between steps: the next sample starts the model afresh (after a gap).
     fn restart(&mut self);
+
+    /// The bias subtracted from the samples grew by `delta` (rad/s, body axes; finite: the propagator
+    /// checks it first): an estimator's bias correction. The samples kept for later steps were corrected
+    /// with the old bias, so the returned model has each lowered by `delta` (an angle increment by `delta`
+    /// times its interval), and the next step joins them to samples corrected with the new bias as if every
+    /// sample had been: no jump in the rate for the model to integrate.
+    /// [`crate::Propagator::correct_bias`] calls it.
+    ///
+    /// The default restarts the model (a model of the caller's own that does not say how forgets its
+    /// samples, which is never wrong, only less accurate for a step or two).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteRate`] if a kept sample would overflow (the built-in models).
+    fn correct_bias(&self, delta: Vec3<T>) -> Result<Self, Error> {
+        let _ = delta;
+        let mut next = *self;
+        next.restart();
+        Ok(next)
+    }
 }

@@ -8,6 +8,17 @@ use super::InputModel;
 use crate::vec3::all_finite;
 use crate::{DeltaAngle, Error, GyroSample, Real, Vec3};
 
+/// `w − delta`, refused if it overflows (a bias correction of a kept sample).
+#[inline]
+fn lowered<T: Real>(w: Vec3<T>, delta: Vec3<T>) -> Result<Vec3<T>, Error> {
+    let v = w - delta;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::NonFiniteRate)
+    }
+}
+
 #[inline(always)]
 fn finite_rate<T: Real>(s: &GyroSample<T>) -> Result<Vec3<T>, Error> {
     if s.rate.is_finite() {
@@ -58,6 +69,11 @@ impl<T: Real> InputModel<T> for Hold {
     }
     #[inline(always)]
     fn restart(&mut self) {}
+    /// Nothing kept: nothing to correct.
+    #[inline(always)]
+    fn correct_bias(&self, _delta: Vec3<T>) -> Result<Self, Error> {
+        Ok(Self)
+    }
 }
 
 /// The rate linear between the previous sample and this one: second order (the trapezoid rule's error in
@@ -109,6 +125,12 @@ impl<T: Real> InputModel<T> for Linear<T> {
     #[inline(always)]
     fn restart(&mut self) {
         self.previous = None;
+    }
+    #[inline]
+    fn correct_bias(&self, delta: Vec3<T>) -> Result<Self, Error> {
+        Ok(Self {
+            previous: self.previous.map(|w| lowered(w, delta)).transpose()?,
+        })
     }
 }
 
@@ -296,6 +318,16 @@ impl<T: Real> InputModel<T> for History<T> {
         self.uniform = false;
         self.dt[0] = T::ZERO;
     }
+    /// The newest sample moves; the differences the history keeps do not (every kept sample moves by
+    /// the same `delta`).
+    #[inline]
+    fn correct_bias(&self, delta: Vec3<T>) -> Result<Self, Error> {
+        let mut next = *self;
+        if self.count > 0 {
+            next.w = lowered(self.w, delta)?;
+        }
+        Ok(next)
+    }
 }
 
 /// A gyro sampled at twice the step rate: each step takes the sample that ended the previous step, a
@@ -379,6 +411,16 @@ impl<T: Real> InputModel<T> for TwiceRate<T> {
     fn restart(&mut self) {
         *self = Self::new();
     }
+    #[inline]
+    fn correct_bias(&self, delta: Vec3<T>) -> Result<Self, Error> {
+        Ok(Self {
+            start: self.start.map(|w| lowered(w, delta)).transpose()?,
+            middle: self
+                .middle
+                .map(|(w, dt)| lowered(w, delta).map(|w| (w, dt)))
+                .transpose()?,
+        })
+    }
 }
 
 /// Rates sampled at the two Gauss–Legendre points `t + (½ ∓ √3/6)h` of each step (a gyro sampled at twice
@@ -436,6 +478,15 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
     #[inline(always)]
     fn restart(&mut self) {
         self.first = None;
+    }
+    #[inline]
+    fn correct_bias(&self, delta: Vec3<T>) -> Result<Self, Error> {
+        Ok(Self {
+            first: self
+                .first
+                .map(|(w, dt)| lowered(w, delta).map(|w| (w, dt)))
+                .transpose()?,
+        })
     }
 }
 
@@ -581,6 +632,25 @@ impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
         self.count = 0;
         self.time = T::ZERO;
         self.previous = None;
+    }
+    /// The pending increments of the open update are lowered by `delta` times their mean interval (the
+    /// update's time so far over their count: exact at a fixed sample period, which is how integrating
+    /// IMUs deliver them). The previous update's last increment, which only the coning correction's cross
+    /// term reads, is lowered by the same interval if the update is open, and left as it was if not (its
+    /// interval is not kept; it enters only that cross term, as a product with the next increments).
+    #[inline]
+    fn correct_bias(&self, delta: Vec3<T>) -> Result<Self, Error> {
+        let k = usize::from(self.count);
+        let mut next = *self;
+        if k == 0 {
+            return Ok(next);
+        }
+        let d = delta * (self.time / T::from_f64(f64::from(self.count)));
+        for p in next.pending.iter_mut().take(k) {
+            *p = lowered(*p, d)?;
+        }
+        next.previous = self.previous.map(|w| lowered(w, d)).transpose()?;
+        Ok(next)
     }
 }
 
