@@ -27,6 +27,9 @@
 //! # Ok::<(), quatprop::Error>(())
 //! ```
 
+// Matrix algorithms read clearest with the indices of their formulas.
+#![allow(clippy::needless_range_loop)]
+
 use crate::{Error, Real};
 
 /// A covariance of `N` states as `U D Uᵀ` ([module documentation](self)). Small and `Copy`; no

@@ -33,8 +33,10 @@
 //! # At a rate of its own
 //! The covariance need not be propagated at every attitude step. [`Step::between`] takes the attitude at
 //! both ends of an interval of `n` steps: `Φθθ` is then exactly the rotation the propagator took (its
-//! input model included), and `Φθb` and `Q` hold the interval's mean rate, whose error grows with the
-//! change of the rate inside the interval (measured in `tests/error_state.rs`).
+//! input model included), and `Φθb` and `Q` hold the interval's mean rate: `Φθb`'s error relative to `Δt`
+//! is at most `|ω̇| Δt²/12` (the first moment of the rate over the interval; 1.2e-4 for a rate changing
+//! at 35 rad/s² over 10 ms, `tests/error_state.rs`), `Q`'s far less (its white-noise part, `σ_g² Δt I`,
+//! is exact whatever the rotation).
 //!
 //! ```
 //! use quatprop::error_state::{GyroNoise, Step};
