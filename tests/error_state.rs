@@ -178,7 +178,7 @@ fn held_rate_step_in_f32_is_the_f64_step_to_f32_precision() {
         worst.0 / eps,
         worst.1 / eps
     );
-    // Measured: Φ 1.5 ε, Q 1.9 ε.
+    // Measured: Φ 1.5 ε, Q 0.9 ε.
     assert!(worst.0 < 4.0 * eps && worst.1 < 4.0 * eps, "{worst:?}");
 }
 

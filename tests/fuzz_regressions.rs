@@ -244,3 +244,30 @@ fn an_overflowing_corrected_rate_ends_the_still_window() {
         .unwrap();
     assert_eq!(a.bias(), est.bias());
 }
+
+/// Found by `estimator` (f64): the process noise of a step with a huge rotation (a rate held over a long
+/// interval, `|φ|` ≫ 1) had a negative attitude variance, −2.7e-20: `Qθθ`'s bias part `I/3 + c₄U²` lost
+/// everything to cancellation on the axes across the rotation, where it is `2(x − sin x)/x³`. It is now
+/// written `2c₂ I + c₄φφᵀ`, both terms non-negative and each accurate.
+#[test]
+fn attitude_noise_across_a_huge_rotation_is_accurate_and_non_negative() {
+    use quatprop::error_state::{GyroNoise, Step};
+    use quatprop::Vec3;
+    let noise = GyroNoise::new(0.0, 1.0).unwrap(); // the bias walk alone
+    for k in 3..=12 {
+        let x = 10f64.powi(k);
+        let (phi, q) = Step::held_rate(Vec3::new(0.0, 0.0, x), 1.0, &noise)
+            .unwrap()
+            .matrices();
+        let _ = phi;
+        let exact = 2.0 * (x - x.sin()) / (x * x * x);
+        for i in 0..2 {
+            assert!(q[i][i] >= 0.0);
+            assert!(
+                (q[i][i] / exact - 1.0).abs() < 1e-14,
+                "x = {x:e}: {} against {exact}",
+                q[i][i]
+            );
+        }
+    }
+}

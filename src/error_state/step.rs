@@ -122,9 +122,10 @@ impl<T: Real> Coefficients<T> {
     }
 }
 
-/// `a I + b U + c U²` for `U = [φ×]`, `U² = φφᵀ − |φ|² I`.
+/// `a I + b U + c φφᵀ` for `U = [φ×]` (`U² = φφᵀ − |φ|² I`: a `U²` term is folded into `a` by the
+/// caller, in a form without cancellation where the sign matters).
 #[inline]
-fn poly<T: Real>(phi: Vec3<T>, x2: T, a: T, b: T, c: T) -> M3<T> {
+fn poly<T: Real>(phi: Vec3<T>, a: T, b: T, c: T) -> M3<T> {
     let v = [phi.x, phi.y, phi.z];
     // [φ×] by rows: (0, −z, y), (z, 0, −x), (−y, x, 0).
     let u = [
@@ -135,7 +136,7 @@ fn poly<T: Real>(phi: Vec3<T>, x2: T, a: T, b: T, c: T) -> M3<T> {
     let mut m = [[T::ZERO; 3]; 3];
     for (i, row) in m.iter_mut().enumerate() {
         for (j, e) in row.iter_mut().enumerate() {
-            let diagonal = if i == j { a - c * x2 } else { T::ZERO };
+            let diagonal = if i == j { a } else { T::ZERO };
             *e = diagonal + b * u[i][j] + c * (v[i] * v[j]);
         }
     }
@@ -167,18 +168,22 @@ impl<T: Real> Step<T> {
             noise.bias_walk() * noise.bias_walk(),
         );
         let dt2 = dt * dt;
-        let attitude = poly(phi, x2, T::ONE, -k.s1, k.c1);
-        let bias = poly(phi, x2, -dt, dt * k.c1, -(dt * k.c2));
+        // I − s₁U + c₁U² = (1 − c₁x²) I − s₁U + c₁φφᵀ (1 − c₁x² = cos x).
+        let attitude = poly(phi, T::ONE - k.c1 * x2, -k.s1, k.c1);
+        // −Δt (I − c₁U + c₂U²) = −Δt (s₁ I − c₁U + c₂φφᵀ) (1 − c₂x² = sin x / x).
+        let bias = poly(phi, -(dt * k.s1), dt * k.c1, -(dt * k.c2));
+        // I/3 + c₄U² = 2c₂ I + c₄φφᵀ (1/3 − c₄x² = 2(x − sin x)/x³ exactly): both terms non-negative, so
+        // the diagonal of Qθθ is, in any rounding.
         let b2dt3 = b2 * dt2 * dt;
         let q_attitude = poly(
             phi,
-            x2,
-            g2 * dt + b2dt3 * T::from_f64(1.0 / 3.0),
+            g2 * dt + b2dt3 * (T::TWO * k.c2),
             T::ZERO,
             b2dt3 * k.c4,
         );
         let b2dt2 = b2 * dt2;
-        let cross = poly(phi, x2, -(b2dt2 * T::HALF), b2dt2 * k.c2, -(b2dt2 * k.c3));
+        // −σ_b²Δt² (I/2 − c₂U + c₃U²) = −σ_b²Δt² (c₁ I − c₂U + c₃φφᵀ) (½ − c₃x² = (1 − cos x)/x²).
+        let cross = poly(phi, -(b2dt2 * k.c1), b2dt2 * k.c2, -(b2dt2 * k.c3));
         let step = Self {
             transition: Transition { attitude, bias },
             noise: ProcessNoise {

@@ -15,6 +15,7 @@ pub mod burst;
 pub mod conversions;
 pub mod delta;
 pub mod dispatch;
+pub mod estimator;
 pub mod frontend;
 pub mod kahan;
 pub mod model;

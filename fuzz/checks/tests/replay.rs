@@ -17,11 +17,12 @@ fn target(name: &str) -> fn(&[u8]) {
         "dispatch" => checks::dispatch::run,
         "precision" => checks::precision::run,
         "kahan" => checks::kahan::run,
+        "estimator" => checks::estimator::run,
         other => panic!("no fuzz target {other}"),
     }
 }
 
-const TARGETS: [&str; 8] = [
+const TARGETS: [&str; 9] = [
     "push",
     "burst",
     "frontend",
@@ -30,6 +31,7 @@ const TARGETS: [&str; 8] = [
     "dispatch",
     "precision",
     "kahan",
+    "estimator",
 ];
 
 #[test]
