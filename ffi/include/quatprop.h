@@ -724,6 +724,39 @@ quatprop_status_t quatprop_push_delta_burst(quatprop_t *s,
                                             size_t *integrated);
 
 /**
+ * An estimator's attitude correction: rotates the attitude by the small rotation `dtheta[3]` (rotation
+ * vector, rad, finite) given in the **body** frame, `q <- q (x) exp(dtheta)`. The input model's samples
+ * and the counters stay (they are body rates). On error nothing changes.
+ *
+ * # Safety
+ * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `dtheta` NULL or 3 readable floats.
+ */
+quatprop_status_t quatprop_rotate_body(quatprop_t *s,
+                                       const float *dtheta);
+
+/**
+ * An estimator's attitude correction given in the **reference** frame: `q <- exp(dtheta) (x) q`
+ * (`dtheta[3]` rad, finite). Otherwise as `quatprop_rotate_body`.
+ *
+ * # Safety
+ * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `dtheta` NULL or 3 readable floats.
+ */
+quatprop_status_t quatprop_rotate_reference(quatprop_t *s,
+                                            const float *dtheta);
+
+/**
+ * An estimator's bias correction: the bias subtracted from the rate samples grows by `delta[3]` (rad/s,
+ * body axes, finite) — the fixed bias or the estimator's estimate moves (a fixed bias of `delta` is set
+ * where there was no bias stage) — and the samples the input model keeps for its next steps are lowered
+ * by `delta` too, so the next step integrates no jump. Both change or neither.
+ *
+ * # Safety
+ * `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `delta` NULL or 3 readable floats.
+ */
+quatprop_status_t quatprop_correct_bias(quatprop_t *s,
+                                        const float *delta);
+
+/**
  * Forgets the samples the input model keeps between steps (after a gap: the next sample starts it
  * afresh). The attitude and counters stay.
  *

@@ -1097,6 +1097,66 @@ pub unsafe extern "C" fn quatprop_push_delta_burst(
     }
 }
 
+/// An estimator's attitude correction: rotates the attitude by the small rotation `dtheta[3]` (rotation
+/// vector, rad, finite) given in the **body** frame, `q <- q (x) exp(dtheta)`. The input model's samples
+/// and the counters stay (they are body rates). On error nothing changes.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `dtheta` NULL or 3 readable floats.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_rotate_body(
+    s: *mut quatprop_t,
+    dtheta: *const f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let d = match unsafe { read(dtheta.cast::<[f32; 3]>()) } {
+        Ok(d) => d,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { with(s, |st| st.rotate(vec3(d), true)) }
+}
+
+/// An estimator's attitude correction given in the **reference** frame: `q <- exp(dtheta) (x) q`
+/// (`dtheta[3]` rad, finite). Otherwise as `quatprop_rotate_body`.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `dtheta` NULL or 3 readable floats.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_rotate_reference(
+    s: *mut quatprop_t,
+    dtheta: *const f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let d = match unsafe { read(dtheta.cast::<[f32; 3]>()) } {
+        Ok(d) => d,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { with(s, |st| st.rotate(vec3(d), false)) }
+}
+
+/// An estimator's bias correction: the bias subtracted from the rate samples grows by `delta[3]` (rad/s,
+/// body axes, finite) — the fixed bias or the estimator's estimate moves (a fixed bias of `delta` is set
+/// where there was no bias stage) — and the samples the input model keeps for its next steps are lowered
+/// by `delta` too, so the next step integrates no jump. Both change or neither.
+///
+/// # Safety
+/// `s` must be NULL or point to a `quatprop_t` not in use elsewhere; `delta` NULL or 3 readable floats.
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_correct_bias(
+    s: *mut quatprop_t,
+    delta: *const f32,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let d = match unsafe { read(delta.cast::<[f32; 3]>()) } {
+        Ok(d) => d,
+        Err(e) => return e,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { with(s, |st| st.correct_bias(vec3(d))) }
+}
+
 /// Forgets the samples the input model keeps between steps (after a gap: the next sample starts it
 /// afresh). The attitude and counters stay.
 ///

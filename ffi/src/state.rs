@@ -474,6 +474,33 @@ impl Inner {
         self.prop.restart_input();
     }
 
+    /// An estimator's correction, `q ← q ⊗ exp(dtheta)` (body frame) or `exp(dtheta) ⊗ q` (reference).
+    pub fn rotate(&mut self, dtheta: Vec3<f32>, body: bool) -> Result<(), Fail> {
+        if body {
+            Ok(self.prop.rotate_body(dtheta)?)
+        } else {
+            Ok(self.prop.rotate_reference(dtheta)?)
+        }
+    }
+
+    /// The bias moved by `delta`: the front end's bias stage (a fixed bias of `delta` where there was
+    /// none) and the samples the input model keeps, both or neither.
+    pub fn correct_bias(&mut self, delta: Vec3<f32>) -> Result<(), Fail> {
+        let bias = match self.front.bias {
+            Bias::None => Bias::Fixed(FixedBias::new(delta)?),
+            Bias::Fixed(b) => Bias::Fixed(b.correct(delta)?),
+            Bias::Estimator(mut e) => {
+                e.correct_bias(delta)?;
+                Bias::Estimator(e)
+            }
+        };
+        let mut prop = self.prop;
+        prop.correct_bias(delta)?;
+        self.front.bias = bias;
+        self.prop = prop;
+        Ok(())
+    }
+
     /// Rate samples through the front end, timed by `time`: stops at the first refusal (its index and why).
     /// A burst that needs a time base the front end lacks is refused before any sample.
     pub fn rates(&mut self, rates: Rates<'_>, time: Time<'_>) -> Result<usize, Refusal> {

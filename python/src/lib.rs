@@ -940,6 +940,46 @@ impl NativeStream {
         .map_err(config_error)
     }
 
+    /// An estimator's attitude correction: `q ← q ⊗ exp(d)` (`body`) or `exp(d) ⊗ q` (rad).
+    fn rotate(&mut self, d: [f64; 3], body: bool) -> PyResult<()> {
+        fn rot<T: Real>(s: &mut Session<T>, d: [f64; 3], body: bool) -> Result<(), Error> {
+            let v = Vec3::new(T::from_f64(d[0]), T::from_f64(d[1]), T::from_f64(d[2]));
+            if body {
+                s.p.rotate_body(v)
+            } else {
+                s.p.rotate_reference(v)
+            }
+        }
+        match &mut self.now {
+            Sessions::F32(s) => rot(s, d, body),
+            Sessions::F64(s) => rot(s, d, body),
+        }
+        .map_err(config_error)
+    }
+
+    /// An estimator's bias correction (rad/s): the fixed bias or the estimator's estimate moves by `d` (a
+    /// fixed bias of `d` where there was none), and so do the samples the input model keeps; both or
+    /// neither.
+    fn correct_bias(&mut self, d: [f64; 3]) -> PyResult<()> {
+        fn corr<T: Real>(s: &mut Session<T>, d: [f64; 3]) -> Result<(), Error> {
+            let v = Vec3::new(T::from_f64(d[0]), T::from_f64(d[1]), T::from_f64(d[2]));
+            let mut next = *s;
+            match (&mut next.estimator, &mut next.fixed) {
+                (Some(e), _) => e.correct_bias(v)?,
+                (None, Some(f)) => *f = f.correct(v)?,
+                (None, None) => next.fixed = Some(FixedBias::new(v)?),
+            }
+            next.p.correct_bias(v)?;
+            *s = next;
+            Ok(())
+        }
+        match &mut self.now {
+            Sessions::F32(s) => corr(s, d),
+            Sessions::F64(s) => corr(s, d),
+        }
+        .map_err(config_error)
+    }
+
     /// Back to the state it was made with.
     fn reset(&mut self) {
         self.now = self.made;

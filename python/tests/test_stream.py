@@ -112,6 +112,32 @@ def test_counters_set_attitude_and_reset():
     np.testing.assert_array_equal(s.update(gyr), first)
 
 
+def test_an_estimators_corrections():
+    # Rotations: q ⊗ exp(d) in the body frame, exp(d) ⊗ q in the reference frame.
+    s = quatprop.Stream(dt=1e-3, precision="f64")
+    s.rotate_reference([0.1, 0.0, 0.0])
+    s.rotate_body([0.0, 0.0, 0.2])
+    c1, s1, c2, s2 = np.cos(0.05), np.sin(0.05), np.cos(0.1), np.sin(0.1)
+    np.testing.assert_allclose(s.attitude, [c1 * c2, s1 * c2, -s1 * s2, c1 * s2], atol=1e-15)
+    before = s.attitude
+    with pytest.raises(ValueError, match="NonFiniteRate"):
+        s.rotate_body([np.nan, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"\[x, y, z\]"):
+        s.correct_bias([1.0, 2.0])
+    np.testing.assert_array_equal(s.attitude, before)
+    # A bias found after 10 samples: the fixed bias moves, the history's samples with it, and the next
+    # step turns by exactly 1 mrad.
+    b = quatprop.Stream(dt=1e-3, precision="f64")
+    raw = np.tile([0.0, 0.0, 1.01], (10, 1))
+    b.update(raw)
+    b.correct_bias([0.0, 0.0, 0.01])
+    np.testing.assert_array_equal(b.bias, [0.0, 0.0, 0.01])
+    q0 = b.attitude
+    q1 = b.update(raw[:1])[-1]
+    turned = 2.0 * (q0[0] * q1[3] - q0[3] * q1[0])
+    assert abs(turned - 1e-3) < 1e-15
+
+
 def test_a_fixed_bias_is_reported():
     s = quatprop.Stream(dt=1e-3, bias=[0.1, 0.0, -0.2], precision="f64")
     np.testing.assert_array_equal(s.bias, [0.1, 0.0, -0.2])

@@ -20,7 +20,7 @@ released; no Python code runs per sample.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional, Sequence, Tuple, Union
+from typing import List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -569,9 +569,35 @@ class Stream:
         self._decide("f64")
         self._native.set_attitude([float(c) for c in qa])
 
+    def rotate_body(self, dtheta) -> None:
+        """An estimator's attitude correction in the **body** frame: ``q ← q ⊗ exp(dtheta)`` (rotation
+        vector ``[x, y, z]``, rad). The input model's samples, the clock and the counters stay."""
+        self._decide("f64")
+        self._native.rotate(_vector3(dtheta, "dtheta"), True)
+
+    def rotate_reference(self, dtheta) -> None:
+        """An estimator's attitude correction in the **reference** frame: ``q ← exp(dtheta) ⊗ q`` (rad)."""
+        self._decide("f64")
+        self._native.rotate(_vector3(dtheta, "dtheta"), False)
+
+    def correct_bias(self, delta) -> None:
+        """An estimator's bias correction: the bias subtracted from the samples grows by ``delta``
+        (``[x, y, z]``, rad/s, body axes) — the fixed bias or the estimator's estimate moves (a fixed bias
+        of ``delta`` is set where there was none) — and the samples the input model keeps move with it, so
+        the next step integrates no jump. Both change or neither."""
+        self._decide("f64")
+        self._native.correct_bias(_vector3(delta, "delta"))
+
     def reset(self) -> None:
         """Back to the state the stream was made with."""
         self._native.reset()
+
+
+def _vector3(v, name: str) -> List[float]:
+    a = np.asarray(v, dtype=np.float64)
+    if a.shape != (3,):
+        raise ValueError(f"{name} must be [x, y, z], got shape {a.shape}")
+    return [float(c) for c in a]
 
 
 if Stream.__doc__:  # None under python -OO
