@@ -1,0 +1,567 @@
+//! An attitude estimator (6D: gyroscope and accelerometer, no magnetometer) built on quatprop's predict
+//! step: an error-state Kalman filter, written once for the host example and the firmware.
+//!
+//! Only `quatprop` and `core`: no `std`, no heap, no panic on a data path (every fallible call returns a
+//! [`FilterError`]), so a `no_std` firmware can include this file with `#[path]` and run the same `f32`
+//! code as the host, bit for bit.
+//!
+//! # The model
+//! - **Attitude**: [`Propagator::recommended`] (ExpMap + History + FirstOrder) integrates `ω_m − b̂`, the
+//!   bias estimate `b̂` held in a [`FixedBias`]. Samples come at a fixed period.
+//! - **Error state** `x = (δθ, δb)`: `q = q̂ ⊗ exp_q(δθ)` (attitude error in the **body** frame) and
+//!   `b = b̂ + δb`. Its covariance is kept as `U D Uᵀ` ([`Ud`]).
+//! - **Predict**: every [`Params::predict_every`] gyro samples, [`Step::between`] the attitude at the
+//!   start and at the end of the interval gives the closed-form `Φ` and `Q`, and [`Ud::predict`] applies
+//!   them.
+//! - **Update** (at the same epochs): the accelerometer's direction `â = a/|a|` against the predicted
+//!   "up" in body axes `ĝ = R(q̂)ᵀ e_z` (reference z up; at rest an accelerometer measures `+g e_z`). The
+//!   measured tilt error is the rotation vector `ρ` taking `ĝ` to `â` with its sign such that `ρ ≈ δθ_⊥`
+//!   (`ρ = (â × ĝ)/|â × ĝ| · angle(â, ĝ)`, exact in the angle), observed as two scalar rows `zᵢ = tᵢ·ρ`
+//!   with `hᵢ = (tᵢ, 0)`, `t₁, t₂` an orthonormal basis of the plane normal to `ĝ`. Heading (the
+//!   component of `δθ` along `ĝ`) is not observed: the reference frame's heading is the one the filter
+//!   started with.
+//! - **Measurement variance** (rad², per row): `r = (σ_a/g)² + σ_floor² + (k · (|a| − g)/g)²`: the
+//!   accelerometer's white noise `σ_a` (m/s² per axis) as a direction, a floor `σ_floor` for what does
+//!   not average out (accelerometer bias and misalignment), and an inflation when the norm departs from
+//!   gravity (a linear acceleration of magnitude `L` tilts the measured direction by up to `L/g`, and
+//!   `||a| − g| ≤ L`: the norm flags the part of it along gravity), plus `(c · |ω̂|)²` with the rate
+//!   `|ω̂|` of the last interval ([`Params::rotating`]: centripetal and tangential accelerations come
+//!   with rotation; at `c` = 3 s the accelerometer is all but ignored while the body turns faster than
+//!   a few °/s, a choice BROAD's fast trials forced, docs/estimator.md).
+//! - **Innovation gate**: the two rows' normalized innovation squared `νᵀ S⁻¹ ν` (`S = T P_θθ Tᵀ + r I`,
+//!   2 degrees of freedom) above [`Params::gate`] rejects the epoch's update (a linear acceleration the
+//!   norm did not flag). So that a filter that is wrong cannot lock itself out, after
+//!   [`Params::gate_timeout`] seconds of consecutive rejections the next update is taken anyway
+//!   (counted in [`Counts::forced`]).
+//! - **Correction and reset**: `x` from the two sequential Bierman updates (`x ← x + K (z − h·x)`) is
+//!   folded into the nominal state: [`Propagator::rotate_body`]`(δθ)`, [`FixedBias::correct`]`(δb)` and
+//!   [`Propagator::correct_bias`]`(δb)` (the same `δb`, so the input model's kept samples move with it),
+//!   and `x` is reset to zero. For a body-frame error the reset's covariance transform is
+//!   `G = I − ½[δθ×]` on the attitude block, `I` to first order in `|δθ|` (a few mrad per update): it is
+//!   taken as `I`, the covariance is left as the update made it.
+//! - **Inclination uncertainty**: the horizontal components of the attitude error in the reference frame
+//!   (`R(q̂) δθ`) are the components of `δθ` normal to `ĝ`; [`Filter::inclination_sigma`] is the square
+//!   root of the larger eigenvalue of their 2 × 2 covariance. For an isotropic 2D Gaussian error the
+//!   error's magnitude is inside 3σ with probability `1 − e^{−4.5}` = 98.9 %.
+//! - **Start**: the first sample's accelerometer gives the tilt (heading zero), with the variance
+//!   [`Params::initial_tilt`]² about both horizontal axes; the bias starts at zero with
+//!   [`Params::initial_bias`]² per axis.
+
+// The matrix code reads clearest with the indices of its formulas; `!(x <= gate)` is meant: a NaN fails it.
+#![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+
+use quatprop::covariance::Ud;
+use quatprop::error_state::{GyroNoise, Step};
+use quatprop::frontend::FixedBias;
+use quatprop::{Error, GyroSample, Propagator, Quat, Real, Recommended, Vec3};
+
+/// The filter's parameters, in the units a datasheet uses (converted once, in [`Filter::new`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    /// The sample period (s): gyro and accelerometer are sampled together, at a fixed rate.
+    pub sample_period: f64,
+    /// Gyro samples per covariance predict and accelerometer update (≥ 1).
+    pub predict_every: u32,
+    /// Gyro angle random walk (°/√h), as [`GyroNoise::from_datasheet`] takes it.
+    pub gyro_arw: f64,
+    /// Gyro bias random walk (°/h/√h).
+    pub gyro_bias_walk: f64,
+    /// Gyro scale-factor and misalignment error (1σ, a fraction of the rotation): the attitude noise
+    /// `(gyro_scale · |φ|)²` (rad², every axis) added per interval in which the body turned by `φ`.
+    pub gyro_scale: f64,
+    /// Accelerometer white noise (m/s², 1σ per axis, per sample).
+    pub accel_noise: f64,
+    /// Floor of the accelerometer's direction error (rad, 1σ per axis): bias and misalignment.
+    pub accel_floor: f64,
+    /// Gravity (m/s²).
+    pub gravity: f64,
+    /// The inflation factor `k` of `||a| − g|/g` (dimensionless; 0: none).
+    pub dynamic: f64,
+    /// The inflation with the rotation rate (s): `σ = rotating · |ω̂|` (rad) added to the measurement's
+    /// (centripetal and tangential accelerations come with rotation, on a lever arm not known here).
+    pub rotating: f64,
+    /// Gate on the normalized innovation squared (2 degrees of freedom; 0: no gate).
+    pub gate: f64,
+    /// Consecutive rejections (s) after which the next update is taken anyway.
+    pub gate_timeout: f64,
+    /// Initial tilt uncertainty (rad, 1σ about each horizontal axis).
+    pub initial_tilt: f64,
+    /// Initial bias uncertainty (rad/s, 1σ per axis).
+    pub initial_bias: f64,
+}
+
+impl Params {
+    /// The parameter set shipped with the example for a MEMS IMU sampled every `sample_period` seconds
+    /// (chosen on BROAD, docs/estimator.md says how): one covariance step and one accelerometer update
+    /// per ~10 ms.
+    #[must_use]
+    pub fn mems(sample_period: f64) -> Self {
+        let per = round_half_away(0.01 / sample_period);
+        Self {
+            sample_period,
+            predict_every: if per >= 1.0 { per as u32 } else { 1 },
+            gyro_arw: 0.5,
+            gyro_bias_walk: 20.0,
+            gyro_scale: 0.01,
+            accel_noise: 1.0,
+            accel_floor: 0.005,
+            gravity: 9.81,
+            dynamic: 3.0,
+            rotating: 3.0,
+            gate: 13.8,
+            gate_timeout: 1.0,
+            initial_tilt: 0.035,
+            initial_bias: 0.01,
+        }
+    }
+
+    fn valid(&self) -> bool {
+        let pos = |v: f64| v > 0.0 && v.is_finite();
+        let nonneg = |v: f64| v >= 0.0 && v.is_finite();
+        pos(self.sample_period)
+            && self.predict_every >= 1
+            && nonneg(self.gyro_arw)
+            && nonneg(self.gyro_bias_walk)
+            && nonneg(self.gyro_scale)
+            && nonneg(self.accel_noise)
+            && nonneg(self.accel_floor)
+            && pos(self.gravity)
+            && nonneg(self.dynamic)
+            && nonneg(self.rotating)
+            && nonneg(self.gate)
+            && nonneg(self.gate_timeout)
+            && pos(self.initial_tilt)
+            && pos(self.initial_bias)
+            && (self.accel_noise > 0.0 || self.accel_floor > 0.0)
+    }
+}
+
+/// Round half away from zero, in `core` only (no `f64::round` without `std`).
+fn round_half_away(v: f64) -> f64 {
+    let t = v as i64 as f64; // truncation toward zero (saturating for huge values)
+    if v - t >= 0.5 {
+        t + 1.0
+    } else if t - v >= 0.5 {
+        t - 1.0
+    } else {
+        t
+    }
+}
+
+/// Why a push (or [`Filter::new`]) failed. The filter is then unchanged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilterError {
+    /// From quatprop: a non-finite gyro sample, a step beyond the scheme's bound, a covariance that
+    /// overflowed, ...
+    Core(Error),
+    /// An accelerometer component is NaN or infinite.
+    NonFiniteAccel,
+    /// The first sample's accelerometer is zero: no tilt to start from (push the next one).
+    NoGravity,
+    /// A parameter is out of range ([`Params`]).
+    InvalidParams,
+}
+
+impl From<Error> for FilterError {
+    fn from(e: Error) -> Self {
+        Self::Core(e)
+    }
+}
+
+impl core::fmt::Display for FilterError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Core(e) => write!(f, "quatprop: {e}"),
+            Self::NonFiniteAccel => f.write_str("non-finite accelerometer sample"),
+            Self::NoGravity => f.write_str("zero accelerometer sample at the start"),
+            Self::InvalidParams => f.write_str("invalid filter parameters"),
+        }
+    }
+}
+
+/// What a push did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pushed {
+    /// The first sample: attitude levelled from the accelerometer, the propagator started.
+    Started,
+    /// The gyro sample was integrated (no epoch).
+    Propagated,
+    /// An epoch: predict, then the accelerometer update (`forced`: taken past the gate's timeout).
+    Updated {
+        /// The gate rejected it but had rejected for longer than its timeout.
+        forced: bool,
+    },
+    /// An epoch: predict; the update was gated out (or `|a|` was zero).
+    Rejected,
+}
+
+/// What the filter counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Samples taken (the first included).
+    pub samples: u64,
+    /// Covariance predict steps (epochs).
+    pub predicts: u64,
+    /// Accelerometer updates applied (forced ones included).
+    pub updates: u64,
+    /// Updates rejected by the gate (or a zero accelerometer).
+    pub rejected: u64,
+    /// Updates taken after the gate's timeout.
+    pub forced: u64,
+}
+
+/// The error-state Kalman filter ([module documentation](self)). `Copy`, allocation-free.
+#[derive(Clone, Copy, Debug)]
+pub struct Filter<T: Real> {
+    prop: Recommended<T>,
+    bias: FixedBias<T>,
+    cov: Ud<T, 6>,
+    /// The attitude at the start of the current covariance interval (after the last correction).
+    q_start: Quat<T>,
+    started: bool,
+    /// Samples integrated since the last epoch.
+    pending: u32,
+    rejected_run: u32,
+    counts: Counts,
+    // Parameters, converted.
+    dt: T,
+    interval: T,
+    every: u32,
+    noise: GyroNoise<T>,
+    scale_var: T,
+    accel_var: T,
+    gravity: T,
+    dynamic: T,
+    /// `rotating / Δt` for the interval's turn `|φ|`.
+    rotating: T,
+    /// The body's turn over the last interval squared (rad²).
+    turned_sq: T,
+    gate: T,
+    gate_epochs: u32,
+    tilt_var: T,
+    bias_var: T,
+}
+
+impl<T: Real> Filter<T> {
+    /// A filter waiting for its first sample.
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidParams`] for a parameter out of range (or one that overflows `T`).
+    pub fn new(params: Params) -> Result<Self, FilterError> {
+        if !params.valid() {
+            return Err(FilterError::InvalidParams);
+        }
+        let noise = GyroNoise::from_datasheet(params.gyro_arw, params.gyro_bias_walk)
+            .map_err(|_| FilterError::InvalidParams)?;
+        let dir = params.accel_noise / params.gravity;
+        let accel_var = dir * dir + params.accel_floor * params.accel_floor;
+        let epoch = params.sample_period * f64::from(params.predict_every);
+        let timeout = round_half_away(params.gate_timeout / epoch);
+        let gate_epochs = if timeout >= f64::from(u32::MAX) {
+            u32::MAX
+        } else {
+            timeout as u32
+        };
+        let conv = |v: f64| {
+            let t = T::from_f64(v);
+            if t.is_finite() {
+                Ok(t)
+            } else {
+                Err(FilterError::InvalidParams)
+            }
+        };
+        let filter = Self {
+            prop: Propagator::recommended(Quat::IDENTITY)?,
+            bias: FixedBias::new(Vec3::ZERO)?,
+            cov: Ud::from_diagonal([T::ZERO; 6])?,
+            q_start: Quat::IDENTITY,
+            started: false,
+            pending: 0,
+            rejected_run: 0,
+            counts: Counts::default(),
+            dt: conv(params.sample_period)?,
+            interval: conv(epoch)?,
+            every: params.predict_every,
+            noise,
+            scale_var: conv(params.gyro_scale * params.gyro_scale)?,
+            accel_var: conv(accel_var)?,
+            gravity: conv(params.gravity)?,
+            dynamic: conv(params.dynamic)?,
+            rotating: conv(params.rotating / epoch)?,
+            turned_sq: T::ZERO,
+            gate: conv(params.gate)?,
+            gate_epochs,
+            tilt_var: conv(params.initial_tilt * params.initial_tilt)?,
+            bias_var: conv(params.initial_bias * params.initial_bias)?,
+        };
+        if filter.dt > T::ZERO && filter.accel_var > T::ZERO {
+            Ok(filter)
+        } else {
+            Err(FilterError::InvalidParams)
+        }
+    }
+
+    /// Takes one sample: `gyro` (rad/s, body axes) and `accel` (m/s², body axes, the specific force: `+g`
+    /// up at rest), taken together one sample period after the previous one. On an error the filter is
+    /// unchanged (the sample is dropped; the next one is taken as one period later still).
+    ///
+    /// # Errors
+    /// [`FilterError::NonFiniteAccel`]; [`FilterError::NoGravity`] for a zero accelerometer on the first
+    /// sample; [`FilterError::Core`] from the propagator or the covariance (e.g. a non-finite gyro sample).
+    pub fn push(&mut self, gyro: Vec3<T>, accel: Vec3<T>) -> Result<Pushed, FilterError> {
+        if !accel.is_finite() {
+            return Err(FilterError::NonFiniteAccel);
+        }
+        if !self.started {
+            return self.start(gyro, accel);
+        }
+        let mut next = *self;
+        next.prop
+            .push(next.bias.apply(GyroSample::new(gyro)), next.dt)?;
+        next.pending += 1;
+        let out = if next.pending >= next.every {
+            next.epoch(accel)?
+        } else {
+            Pushed::Propagated
+        };
+        next.counts.samples += 1;
+        *self = next;
+        Ok(out)
+    }
+
+    fn start(&mut self, gyro: Vec3<T>, accel: Vec3<T>) -> Result<Pushed, FilterError> {
+        let up = accel.normalized().ok_or(FilterError::NoGravity)?;
+        let q0 = level(up)?;
+        let mut next = *self;
+        next.prop.set_attitude(q0)?;
+        next.prop.start(next.bias.apply(GyroSample::new(gyro)))?;
+        // P_θθ = σ_t² (I − ĝĝᵀ) + σ_h² ĝĝᵀ (body axes), σ_h small: the heading is the filter's own.
+        let head_var = next.tilt_var * T::from_f64(1e-4);
+        let g = [up.x, up.y, up.z];
+        let mut p = [[T::ZERO; 6]; 6];
+        for i in 0..3 {
+            for j in 0..3 {
+                let id = if i == j { T::ONE } else { T::ZERO };
+                p[i][j] = next.tilt_var * (id - g[i] * g[j]) + head_var * g[i] * g[j];
+            }
+            p[i + 3][i + 3] = next.bias_var;
+        }
+        // Symmetric by construction up to the order of the products: mirror the upper triangle.
+        for i in 0..6 {
+            for j in 0..i {
+                p[i][j] = p[j][i];
+            }
+        }
+        next.cov = Ud::from_matrix(&p)?;
+        next.q_start = next.prop.attitude();
+        next.started = true;
+        next.pending = 0;
+        next.counts.samples += 1;
+        *self = next;
+        Ok(Pushed::Started)
+    }
+
+    /// Predict over the interval just integrated, then the accelerometer update and the correction.
+    fn epoch(&mut self, accel: Vec3<T>) -> Result<Pushed, FilterError> {
+        let end = self.prop.attitude();
+        let step = Step::between(self.q_start, end, self.interval, &self.noise)?;
+        let (phi, mut q) = step.matrices();
+        let turned = (self.q_start.conjugate() * end).to_rotation_vector();
+        self.turned_sq = turned.norm_squared();
+        let extra = self.scale_var * self.turned_sq;
+        for i in 0..3 {
+            q[i][i] += extra;
+        }
+        self.cov.predict(&phi, &q)?;
+        self.counts.predicts += 1;
+        self.pending = 0;
+        self.q_start = end;
+
+        let g_hat = up_in_body(end);
+        let norm = accel.norm();
+        let Some(a_hat) = accel.normalized() else {
+            self.reject();
+            return Ok(Pushed::Rejected);
+        };
+        let (t1, t2) = tangents(g_hat)?;
+        // ρ: from ĝ to â, ρ ≈ δθ_⊥.
+        let c = a_hat.cross(g_hat);
+        let s = c.norm();
+        let angle = s.atan2(a_hat.dot(g_hat));
+        let rho = if s > T::ZERO { c * (angle / s) } else { c };
+        let z = [t1.dot(rho), t2.dot(rho)];
+        let excess = self.dynamic * (norm - self.gravity) / self.gravity;
+        let r = self.accel_var + excess * excess + self.rotating * self.rotating * self.turned_sq;
+        if !r.is_finite() {
+            return Err(FilterError::Core(Error::NonFiniteResult));
+        }
+
+        let mut forced = false;
+        if self.gate > T::ZERO {
+            let nis = nis(&self.cov.matrix(), t1, t2, r, z);
+            if !(nis <= self.gate) {
+                if self.rejected_run < self.gate_epochs {
+                    self.reject();
+                    return Ok(Pushed::Rejected);
+                }
+                // The filter has disagreed with the accelerometer for longer than the timeout: take it
+                // as wrong and reopen its tilt uncertainty (Φ = I, Q = σ_t² (I − ĝĝᵀ)) before updating.
+                forced = true;
+                let mut identity = [[T::ZERO; 6]; 6];
+                let mut reopen = [[T::ZERO; 6]; 6];
+                let g = [g_hat.x, g_hat.y, g_hat.z];
+                for i in 0..6 {
+                    identity[i][i] = T::ONE;
+                }
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let id = if i == j { T::ONE } else { T::ZERO };
+                        reopen[i][j] = self.tilt_var * (id - g[i] * g[j]);
+                    }
+                }
+                self.cov.predict(&identity, &reopen)?;
+            }
+        }
+
+        let mut x = [T::ZERO; 6];
+        for (t, zi) in [(t1, z[0]), (t2, z[1])] {
+            let h = [t.x, t.y, t.z, T::ZERO, T::ZERO, T::ZERO];
+            let gain = self.cov.update(&h, r)?;
+            let mut hx = T::ZERO;
+            for i in 0..6 {
+                hx += h[i] * x[i];
+            }
+            let innovation = zi - hx;
+            for i in 0..6 {
+                x[i] += gain.gain[i] * innovation;
+            }
+        }
+        let dtheta = Vec3::new(x[0], x[1], x[2]);
+        let dbias = Vec3::new(x[3], x[4], x[5]);
+        self.prop.rotate_body(dtheta)?;
+        self.bias = self.bias.correct(dbias)?;
+        self.prop.correct_bias(dbias)?;
+        self.q_start = self.prop.attitude();
+        self.rejected_run = 0;
+        self.counts.updates += 1;
+        if forced {
+            self.counts.forced += 1;
+        }
+        Ok(Pushed::Updated { forced })
+    }
+
+    fn reject(&mut self) {
+        self.rejected_run = self.rejected_run.saturating_add(1);
+        self.counts.rejected += 1;
+    }
+
+    /// The attitude estimate `q̂` (body to reference, z up; heading the filter's own).
+    #[must_use]
+    pub fn attitude(&self) -> Quat<T> {
+        self.prop.attitude()
+    }
+
+    /// The gyro bias estimate `b̂` (rad/s, body axes).
+    #[must_use]
+    pub fn bias(&self) -> Vec3<T> {
+        self.bias.bias()
+    }
+
+    /// The variances of `(δθ, δb)` (body axes; rad², (rad/s)²), as of the last epoch.
+    #[must_use]
+    pub fn variances(&self) -> [T; 6] {
+        self.cov.variances()
+    }
+
+    /// The inclination's 1σ (rad): the square root of the larger eigenvalue of the covariance of the
+    /// attitude error's horizontal components (reference frame), as of the last epoch. Three times it is
+    /// the 3σ bound.
+    ///
+    /// # Errors
+    /// [`FilterError::Core`] if the attitude is not finite.
+    pub fn inclination_sigma(&self) -> Result<T, FilterError> {
+        let (t1, t2) = tangents(up_in_body(self.prop.attitude()))?;
+        let p = self.cov.matrix();
+        let a = quadratic(&p, t1, t1);
+        let b = quadratic(&p, t1, t2);
+        let c = quadratic(&p, t2, t2);
+        let half = (a - c) * T::HALF;
+        let lambda = (a + c) * T::HALF + (half * half + b * b).sqrt();
+        Ok(lambda.max(T::ZERO).sqrt())
+    }
+
+    /// What the filter counted.
+    #[must_use]
+    pub fn counts(&self) -> Counts {
+        self.counts
+    }
+
+    /// Whether the first sample has been taken.
+    #[must_use]
+    pub fn is_started(&self) -> bool {
+        self.started
+    }
+}
+
+/// `R(q)ᵀ e_z`: the reference's up in body axes.
+fn up_in_body<T: Real>(q: Quat<T>) -> Vec3<T> {
+    q.conjugate().rotate(Vec3::new(T::ZERO, T::ZERO, T::ONE))
+}
+
+/// The attitude (heading zero) that takes the body vector `up` (unit) to the reference's `e_z`.
+fn level<T: Real>(up: Vec3<T>) -> Result<Quat<T>, FilterError> {
+    let ez = Vec3::new(T::ZERO, T::ZERO, T::ONE);
+    let axis = up.cross(ez);
+    let s = axis.norm();
+    let q = if s > T::ZERO {
+        Quat::from_rotation_vector(axis * (s.atan2(up.z) / s))
+    } else if up.z > T::ZERO {
+        Quat::IDENTITY
+    } else {
+        Quat::from_rotation_vector(Vec3::new(T::PI, T::ZERO, T::ZERO))
+    };
+    if q.is_finite() {
+        Ok(q)
+    } else {
+        Err(FilterError::Core(Error::NonFiniteResult))
+    }
+}
+
+/// An orthonormal basis `(t₁, t₂)` of the plane normal to the unit vector `g`.
+fn tangents<T: Real>(g: Vec3<T>) -> Result<(Vec3<T>, Vec3<T>), FilterError> {
+    let (ax, ay, az) = (g.x.abs(), g.y.abs(), g.z.abs());
+    let e = if ax <= ay && ax <= az {
+        Vec3::new(T::ONE, T::ZERO, T::ZERO)
+    } else if ay <= az {
+        Vec3::new(T::ZERO, T::ONE, T::ZERO)
+    } else {
+        Vec3::new(T::ZERO, T::ZERO, T::ONE)
+    };
+    let t1 = g
+        .cross(e)
+        .normalized()
+        .ok_or(FilterError::Core(Error::NonFiniteResult))?;
+    let t2 = g.cross(t1);
+    Ok((t1, t2))
+}
+
+/// `uᵀ P_θθ v`.
+fn quadratic<T: Real>(p: &[[T; 6]; 6], u: Vec3<T>, v: Vec3<T>) -> T {
+    let (u, v) = ([u.x, u.y, u.z], [v.x, v.y, v.z]);
+    let mut s = T::ZERO;
+    for i in 0..3 {
+        for j in 0..3 {
+            s += u[i] * p[i][j] * v[j];
+        }
+    }
+    s
+}
+
+/// The normalized innovation squared `zᵀ S⁻¹ z`, `S = T P_θθ Tᵀ + r I` (2 × 2).
+fn nis<T: Real>(p: &[[T; 6]; 6], t1: Vec3<T>, t2: Vec3<T>, r: T, z: [T; 2]) -> T {
+    let a = quadratic(p, t1, t1) + r;
+    let b = quadratic(p, t1, t2);
+    let c = quadratic(p, t2, t2) + r;
+    let det = a * c - b * b;
+    (c * z[0] * z[0] - T::TWO * b * z[0] * z[1] + a * z[1] * z[1]) / det
+}
