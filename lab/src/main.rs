@@ -49,7 +49,7 @@ fn main() {
     let command = std::env::args().skip(1).collect::<Vec<_>>().join(" ");
     let failures = report::finish(&mut ctx, &command, inv.subcommand().0 == "report");
     if failures.is_empty() {
-        eprintln!("report written to {}/README.md", out.display());
+        eprintln!("written to {}/{}", out.display(), ctx.markdown_file());
     } else {
         for f in &failures {
             eprintln!("error: {f}");

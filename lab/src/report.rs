@@ -25,6 +25,9 @@ pub struct Ctx {
     times: Vec<StudyTimeRow>,
     /// Whether host-time measurements ran at the core's quiet speed (the probe, watched over the process).
     pub quiet: Quiet,
+    /// A study run alone that writes a page of its own (`DIR/<page>`, e.g. into docs/) instead of the
+    /// lab report's `README.md` ([`Ctx::page`]).
+    page: Option<String>,
 }
 
 impl Ctx {
@@ -53,7 +56,19 @@ impl Ctx {
             sections: Vec::new(),
             times: Vec::new(),
             quiet: Quiet::new(),
+            page: None,
         }
+    }
+
+    /// Makes this run write its sections to `DIR/file` as a page of their own (with the command that
+    /// wrote it, no run-time table) instead of `DIR/README.md`: for a study run alone into docs/.
+    pub fn page(&mut self, file: &str) {
+        self.page = Some(file.to_string());
+    }
+
+    /// The Markdown file this run writes (`README.md` unless a study asked for a page).
+    pub fn markdown_file(&self) -> &str {
+        self.page.as_deref().unwrap_or("README.md")
     }
 
     /// Runs one timed part of a study (a row of the run-time table, `name`) whose Markdown `f` returns; the
@@ -124,6 +139,19 @@ pub fn finish(ctx: &mut Ctx, command: &str, all_studies: bool) -> Vec<String> {
     let out = ctx.out.clone();
     let times = std::mem::take(&mut ctx.times);
     let sections = std::mem::take(&mut ctx.sections);
+    if let Some(page) = ctx.page.clone() {
+        let md = format!(
+            "_Written by `cargo run --release -p quatprop-lab -- {command}` ({:.0} s on this machine); do not \
+             edit by hand, re-run it._\n\n{}",
+            ctx.started.elapsed().as_secs_f64(),
+            sections.join("\n")
+        );
+        if let Err(e) = std::fs::write(out.join(&page), md) {
+            ctx.failures.push(format!("{page}: {e}"));
+        }
+        check_figures(ctx, &out, &sections);
+        return ctx.failures.clone();
+    }
     let run_time = format!(
         "### Run time\n\nEach study's wall time and this process's CPU time over all its threads: CPU / wall \
          near the thread count means the sweeps ran in parallel; near 1, serially (the timing measurements \
@@ -144,8 +172,17 @@ pub fn finish(ctx: &mut Ctx, command: &str, all_studies: bool) -> Vec<String> {
     if let Err(e) = std::fs::write(out.join("README.md"), md) {
         ctx.failures.push(format!("README.md: {e}"));
     }
-    // Every figure the sections link must exist.
-    for s in &sections {
+    check_figures(ctx, &out, &sections);
+    if all_studies {
+        let files = ctx.files.clone();
+        ctx.failures.extend(crate::outputs::check(&out, &files));
+    }
+    ctx.failures.clone()
+}
+
+/// Every figure the sections link must exist, as PNG and SVG.
+fn check_figures(ctx: &mut Ctx, out: &Path, sections: &[String]) {
+    for s in sections {
         for part in s.split("](").skip(1) {
             let file = part.split(')').next().unwrap_or("");
             if !out.join(file).exists() {
@@ -157,9 +194,4 @@ pub fn finish(ctx: &mut Ctx, command: &str, all_studies: bool) -> Vec<String> {
             }
         }
     }
-    if all_studies {
-        let files = ctx.files.clone();
-        ctx.failures.extend(crate::outputs::check(&out, &files));
-    }
-    ctx.failures.clone()
 }

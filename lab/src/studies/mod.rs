@@ -28,4 +28,5 @@ registry! {
     coning_drift::ConingDrift,
     time_base::TimeBaseStudy,
     long_horizon::LongHorizon,
+    covariance::Covariance,
 }
