@@ -1,6 +1,9 @@
 //! The UD covariance: Thornton's predict and Bierman's update against the plain formulas in f64, its
 //! invariants after many random operations, and its refusals (state unchanged).
 
+// Matrix code reads clearest with the indices of its formulas.
+#![allow(clippy::needless_range_loop)]
+
 use quatprop::covariance::Ud;
 use quatprop::Error;
 
@@ -231,4 +234,32 @@ fn refusals_leave_the_factors_unchanged() {
         Ud::<f32, 6>::from_diagonal([f32::INFINITY; 6]),
         Err(Error::InvalidCovariance)
     );
+}
+
+/// A variance nothing observes, growing by increments below half its ulp (the heading of an
+/// inclination-only filter: 1e-11 rad² per step on 1e-2): the plain predict drops every one, the
+/// compensated one carries them as f64 does.
+#[test]
+fn compensated_predict_keeps_increments_below_the_ulp() {
+    let eye: [[f32; 6]; 6] =
+        core::array::from_fn(|i| core::array::from_fn(|j| f32::from(u8::from(i == j))));
+    let mut q = [[0.0_f32; 6]; 6];
+    q[2][2] = 1e-11;
+    let start = [1e-4, 1e-4, 1e-2, 1e-6, 1e-6, 1e-6];
+    let mut plain = Ud::<f32, 6>::from_diagonal(start).unwrap();
+    let mut carried = plain;
+    let n = 1_000_000;
+    for _ in 0..n {
+        plain.predict(&eye, &q).unwrap();
+        carried.predict_compensated(&eye, &q).unwrap();
+    }
+    let exact = 1e-2_f64 + f64::from(1e-11_f32) * f64::from(n);
+    let widen = |u: &Ud<f32, 6>| f64::from(u.d()[2]);
+    let (e_plain, e_carried) = (
+        (widen(&plain) / exact - 1.0).abs(),
+        (widen(&carried) / exact - 1.0).abs(),
+    );
+    println!("heading variance after 1e6 steps: plain {e_plain:.2e}, compensated {e_carried:.2e} relative");
+    assert_eq!(plain.d()[2], 1e-2); // every increment lost
+    assert!(e_carried < 1e-7, "{e_carried}");
 }

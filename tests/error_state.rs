@@ -2,6 +2,9 @@
 //! f64 and f32, on both sides of the series/closed-form switch; `Step::between` against the exact
 //! composition of per-step transitions; refusals.
 
+// Matrix code reads clearest with the indices of its formulas.
+#![allow(clippy::needless_range_loop)]
+
 use quatprop::error_state::{GyroNoise, Step};
 use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 
