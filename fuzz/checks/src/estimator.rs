@@ -6,7 +6,7 @@
 //!   ⇒ every entry finite, `Φθθ` orthogonal within `64ε` where the rotation is finite, `Qθθ`'s and
 //!   `Qbb`'s diagonals non-negative.
 //! - `Ud`: built from an arbitrary diagonal or matrix (refused as documented), then an arbitrary sequence
-//!   of `predict` (arbitrary or plausible Φ and Q) and `update` (arbitrary or plausible rows and
+//!   of `predict` or `predict_compensated` (arbitrary or plausible Φ and Q) and `update` (arbitrary or plausible rows and
 //!   variances): `Err` ⇒ the factors unchanged bit for bit; `Ok` ⇒ `U` unit upper triangular, `D` finite
 //!   and non-negative, `matrix()` symmetric bit for bit, and an update's innovation variance at least the
 //!   measurement's variance (rounding allowed) with a finite gain.
@@ -187,7 +187,12 @@ fn predict<T: Fz>(b: &mut Bytes<'_>, ud: &mut Ud<T, 6>, noise: &GyroNoise<T>) {
         };
         (m(b), m(b))
     };
-    match ud.predict(&phi, &q) {
+    let r = if b.bool() {
+        ud.predict(&phi, &q)
+    } else {
+        ud.predict_compensated(&phi, &q)
+    };
+    match r {
         Ok(()) => {}
         Err(e) => {
             assert_eq!(e, Error::InvalidCovariance);
