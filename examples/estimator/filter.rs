@@ -88,6 +88,11 @@ pub struct Params {
     pub initial_tilt: f64,
     /// Initial bias uncertainty (rad/s, 1σ per axis).
     pub initial_bias: f64,
+    /// Time constant (s) of the accelerometer's low-pass in the reference frame (a second-order
+    /// Butterworth, as VQF's); 0: the raw sample is the measurement.
+    pub accel_tau: f64,
+    /// Epochs per accelerometer update (≥ 1): the low-passed direction is correlated in time.
+    pub update_every: u32,
 }
 
 impl Params {
@@ -106,12 +111,14 @@ impl Params {
             accel_noise: 1.0,
             accel_floor: 0.005,
             gravity: 9.81,
-            dynamic: 3.0,
-            rotating: 3.0,
+            dynamic: 1.0,
+            rotating: 0.0,
             gate: 13.8,
             gate_timeout: 1.0,
             initial_tilt: 0.035,
             initial_bias: 0.01,
+            accel_tau: 1.5,
+            update_every: 10,
         }
     }
 
@@ -132,6 +139,8 @@ impl Params {
             && nonneg(self.gate_timeout)
             && pos(self.initial_tilt)
             && pos(self.initial_bias)
+            && nonneg(self.accel_tau)
+            && self.update_every >= 1
             && (self.accel_noise > 0.0 || self.accel_floor > 0.0)
     }
 }
@@ -193,6 +202,8 @@ pub enum Pushed {
     },
     /// An epoch: predict; the update was gated out (or `|a|` was zero).
     Rejected,
+    /// An epoch: predict only (no accelerometer update due, [`Params::update_every`]).
+    Predicted,
 }
 
 /// What the filter counted.
@@ -240,6 +251,11 @@ pub struct Filter<T: Real> {
     gate_epochs: u32,
     tilt_var: T,
     bias_var: T,
+    /// The accelerometer low-pass ([`Lowpass`]), `None` when `accel_tau` is 0.
+    lowpass: Option<Lowpass<T>>,
+    update_every: u32,
+    /// Epochs since the last accelerometer update (taken or not).
+    since_update: u32,
 }
 
 impl<T: Real> Filter<T> {
@@ -256,7 +272,8 @@ impl<T: Real> Filter<T> {
         let dir = params.accel_noise / params.gravity;
         let accel_var = dir * dir + params.accel_floor * params.accel_floor;
         let epoch = params.sample_period * f64::from(params.predict_every);
-        let timeout = round_half_away(params.gate_timeout / epoch);
+        let timeout =
+            round_half_away(params.gate_timeout / (epoch * f64::from(params.update_every)));
         let gate_epochs = if timeout >= f64::from(u32::MAX) {
             u32::MAX
         } else {
@@ -293,6 +310,16 @@ impl<T: Real> Filter<T> {
             gate_epochs,
             tilt_var: conv(params.initial_tilt * params.initial_tilt)?,
             bias_var: conv(params.initial_bias * params.initial_bias)?,
+            lowpass: if params.accel_tau > 0.0 {
+                Some(
+                    Lowpass::new(params.accel_tau, params.sample_period)
+                        .ok_or(FilterError::InvalidParams)?,
+                )
+            } else {
+                None
+            },
+            update_every: params.update_every,
+            since_update: 0,
         };
         if filter.dt > T::ZERO && filter.accel_var > T::ZERO {
             Ok(filter)
@@ -319,6 +346,9 @@ impl<T: Real> Filter<T> {
         next.prop
             .push(next.bias.apply(GyroSample::new(gyro)), next.dt)?;
         next.pending += 1;
+        if let Some(lp) = next.lowpass.as_mut() {
+            lp.push(next.prop.attitude().rotate(accel));
+        }
         let out = if next.pending >= next.every {
             next.epoch(accel)?
         } else {
@@ -354,6 +384,9 @@ impl<T: Real> Filter<T> {
         }
         next.cov = Ud::from_matrix(&p)?;
         next.q_start = next.prop.attitude();
+        if let Some(lp) = next.lowpass.as_mut() {
+            lp.reset(next.q_start.rotate(accel));
+        }
         next.started = true;
         next.pending = 0;
         next.counts.samples += 1;
@@ -377,7 +410,18 @@ impl<T: Real> Filter<T> {
         self.pending = 0;
         self.q_start = end;
 
+        self.since_update += 1;
+        if self.since_update < self.update_every {
+            return Ok(Pushed::Predicted);
+        }
+        self.since_update = 0;
         let g_hat = up_in_body(end);
+        // The measured specific force: the sample itself, or the low-passed one (reference frame) seen
+        // in body axes now.
+        let accel = match &self.lowpass {
+            Some(lp) => end.conjugate().rotate(lp.output()),
+            None => accel,
+        };
         let norm = accel.norm();
         let Some(a_hat) = accel.normalized() else {
             self.reject();
@@ -439,6 +483,11 @@ impl<T: Real> Filter<T> {
         let dtheta = Vec3::new(x[0], x[1], x[2]);
         let dbias = Vec3::new(x[3], x[4], x[5]);
         self.prop.rotate_body(dtheta)?;
+        if let Some(lp) = self.lowpass.as_mut() {
+            // q ← q ⊗ exp(δθ) is exp(R(q)δθ) ⊗ q: the reference-frame correction moves the past samples
+            // held in the low-pass as it moves the attitude they were rotated with.
+            lp.rotate(Quat::from_rotation_vector(end.rotate(dtheta)));
+        }
         self.bias = self.bias.correct(dbias)?;
         self.prop.correct_bias(dbias)?;
         self.q_start = self.prop.attitude();
@@ -564,4 +613,76 @@ fn nis<T: Real>(p: &[[T; 6]; 6], t1: Vec3<T>, t2: Vec3<T>, r: T, z: [T; 2]) -> T
     let c = quadratic(p, t2, t2) + r;
     let det = a * c - b * b;
     (c * z[0] * z[0] - T::TWO * b * z[0] * z[1] + a * z[1] * z[1]) / det
+}
+
+/// A second-order Butterworth low-pass of a vector (VQF's: cut-off `√2/(2πτ)`, bilinear transform),
+/// transposed direct form II, run per axis.
+#[derive(Clone, Copy, Debug)]
+struct Lowpass<T: Real> {
+    b0: T,
+    b1: T,
+    b2: T,
+    a1: T,
+    a2: T,
+    s0: Vec3<T>,
+    s1: Vec3<T>,
+    y: Vec3<T>,
+}
+
+impl<T: Real> Lowpass<T> {
+    fn new(tau: f64, dt: f64) -> Option<Self> {
+        let fc = core::f64::consts::SQRT_2 / (2.0 * core::f64::consts::PI * tau);
+        let x = core::f64::consts::PI * fc * dt;
+        let c = <f64 as Real>::sin(x) / <f64 as Real>::cos(x);
+        let d = c * c + core::f64::consts::SQRT_2 * c + 1.0;
+        let b0 = c * c / d;
+        let a1 = 2.0 * (c * c - 1.0) / d;
+        let a2 = (1.0 - core::f64::consts::SQRT_2 * c + c * c) / d;
+        let f = |v: f64| {
+            let t = T::from_f64(v);
+            if v.is_finite() && t.is_finite() {
+                Some(t)
+            } else {
+                None
+            }
+        };
+        if !(x > 0.0 && x < 1.5) {
+            return None;
+        }
+        Some(Self {
+            b0: f(b0)?,
+            b1: f(2.0 * b0)?,
+            b2: f(b0)?,
+            a1: f(a1)?,
+            a2: f(a2)?,
+            s0: Vec3::ZERO,
+            s1: Vec3::ZERO,
+            y: Vec3::ZERO,
+        })
+    }
+
+    /// The steady state for a constant input `x`.
+    fn reset(&mut self, x: Vec3<T>) {
+        self.y = x;
+        self.s0 = x * (T::ONE - self.b0);
+        self.s1 = x * (self.b2 - self.a2);
+    }
+
+    fn push(&mut self, x: Vec3<T>) {
+        let y = x * self.b0 + self.s0;
+        self.s0 = x * self.b1 - y * self.a1 + self.s1;
+        self.s1 = x * self.b2 - y * self.a2;
+        self.y = y;
+    }
+
+    fn output(&self) -> Vec3<T> {
+        self.y
+    }
+
+    /// Rotates the filter's state and output (the filter is linear: as if every past input had been).
+    fn rotate(&mut self, q: Quat<T>) {
+        self.s0 = q.rotate(self.s0);
+        self.s1 = q.rotate(self.s1);
+        self.y = q.rotate(self.y);
+    }
 }

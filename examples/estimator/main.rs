@@ -42,7 +42,7 @@ fn describe(p: &Params) -> String {
     format!(
         "sample_period = {}\npredict_every = {}\ngyro_arw = {}\ngyro_bias_walk = {}\ngyro_scale = {}\naccel_noise = {}\n\
          accel_floor = {}\ngravity = {}\ndynamic = {}\nrotating = {}\ngate = {}\ngate_timeout = {}\ninitial_tilt = {}\n\
-         initial_bias = {}\n",
+         initial_bias = {}\naccel_tau = {}\nupdate_every = {}\n",
         p.sample_period,
         p.predict_every,
         p.gyro_arw,
@@ -56,7 +56,9 @@ fn describe(p: &Params) -> String {
         p.gate,
         p.gate_timeout,
         p.initial_tilt,
-        p.initial_bias
+        p.initial_bias,
+        p.accel_tau,
+        p.update_every
     )
 }
 
@@ -88,6 +90,13 @@ fn set(p: &mut Params, assignment: &str) -> Result<(), String> {
         "gate_timeout" => p.gate_timeout = v,
         "initial_tilt" => p.initial_tilt = v,
         "initial_bias" => p.initial_bias = v,
+        "accel_tau" => p.accel_tau = v,
+        "update_every" => {
+            p.update_every = value
+                .trim()
+                .parse()
+                .map_err(|_| format!("--set {assignment}: not a whole number"))?
+        }
         other => return Err(format!("--set: unknown parameter {other}")),
     }
     Ok(())
