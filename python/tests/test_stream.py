@@ -134,7 +134,7 @@ def test_an_estimators_corrections():
     np.testing.assert_array_equal(b.bias, [0.0, 0.0, 0.01])
     q0 = b.attitude
     q1 = b.update(raw[:1])[-1]
-    turned = 2.0 * (q0[0] * q1[3] - q0[3] * q1[0])
+    turned = 2.0 * np.arctan2(q0[0] * q1[3] - q0[3] * q1[0], q0[0] * q1[0] + q0[3] * q1[3])
     assert abs(turned - 1e-3) < 1e-15
 
 
