@@ -6,28 +6,40 @@
 //! code as the host, bit for bit.
 //!
 //! # The model
-//! - **Attitude**: [`Propagator::recommended`] (ExpMap + History + FirstOrder) integrates `ω_m − b̂`, the
-//!   bias estimate `b̂` held in a [`FixedBias`]. Samples come at a fixed period.
+//! - **Attitude**: a [`Propagator`] (ExpMap + [`Hold`] + FirstOrder) integrates `ω_m − b̂`, the bias
+//!   estimate `b̂` held in a [`FixedBias`]. Samples come at a fixed period. [`Hold`] takes each sample as
+//!   the mean rate over the period that ends at it (as VQF integrates): a MEMS gyro's output is filtered
+//!   and late, and on BROAD's fast rotations `History` (the sample as the rate at its instant, half a
+//!   period later) measured 1.64° instead of 1.03° on trial 07 (docs/estimator.md).
 //! - **Error state** `x = (δθ, δb)`: `q = q̂ ⊗ exp_q(δθ)` (attitude error in the **body** frame) and
 //!   `b = b̂ + δb`. Its covariance is kept as `U D Uᵀ` ([`Ud`]).
 //! - **Predict**: every [`Params::predict_every`] gyro samples, [`Step::between`] the attitude at the
 //!   start and at the end of the interval gives the closed-form `Φ` and `Q`, and [`Ud::predict`] applies
 //!   them.
-//! - **Update** (at the same epochs): the accelerometer's direction `â = a/|a|` against the predicted
+//! - **Accelerometer low-pass** ([`Params::accel_tau`], as VQF does): every sample is rotated into the
+//!   reference frame with the current attitude and low-passed there (second-order Butterworth, cut-off
+//!   `√2/(2πτ)`), where the gyro keeps the frame almost inertial and the linear accelerations of a motion
+//!   that comes back average out. A correction `q̂ ← q̂ ⊗ exp(δθ)` is `exp(R(q̂)δθ) ⊗ q̂`: the filter's
+//!   state is rotated by the same reference-frame rotation, as if the past samples had been rotated with
+//!   the corrected attitude. The measurement is the low-pass output seen in body axes now.
+//! - **Update** (every [`Params::update_every`] epochs, ~0.1 s: the low-passed direction is correlated
+//!   in time; its variance is the measured equivalent, not a white sample's): the accelerometer's
+//!   direction `â = a/|a|` against the predicted
 //!   "up" in body axes `ĝ = R(q̂)ᵀ e_z` (reference z up; at rest an accelerometer measures `+g e_z`). The
 //!   measured tilt error is the rotation vector `ρ` taking `ĝ` to `â` with its sign such that `ρ ≈ δθ_⊥`
 //!   (`ρ = (â × ĝ)/|â × ĝ| · angle(â, ĝ)`, exact in the angle), observed as two scalar rows `zᵢ = tᵢ·ρ`
 //!   with `hᵢ = (tᵢ, 0)`, `t₁, t₂` an orthonormal basis of the plane normal to `ĝ`. Heading (the
 //!   component of `δθ` along `ĝ`) is not observed: the reference frame's heading is the one the filter
 //!   started with.
-//! - **Measurement variance** (rad², per row): `r = (σ_a/g)² + σ_floor² + (k · (|a| − g)/g)²`: the
-//!   accelerometer's white noise `σ_a` (m/s² per axis) as a direction, a floor `σ_floor` for what does
+//! - **Measurement variance** (rad², per row): `r = (σ_a/g)² + σ_floor² + (k · (|a| − g)/g)²` (`a`
+//!   the low-passed specific force when the low-pass is on): `σ_a` (m/s² per axis: with the low-pass, an
+//!   equivalent noise of the filtered direction, chosen for consistency on BROAD) as a direction, a floor
+//!   `σ_floor` for what does
 //!   not average out (accelerometer bias and misalignment), and an inflation when the norm departs from
 //!   gravity (a linear acceleration of magnitude `L` tilts the measured direction by up to `L/g`, and
 //!   `||a| − g| ≤ L`: the norm flags the part of it along gravity), plus `(c · |ω̂|)²` with the rate
 //!   `|ω̂|` of the last interval ([`Params::rotating`]: centripetal and tangential accelerations come
-//!   with rotation; at `c` = 3 s the accelerometer is all but ignored while the body turns faster than
-//!   a few °/s, a choice BROAD's fast trials forced, docs/estimator.md).
+//!   with rotation; 0 in the shipped set: with the low-pass it only made things worse on BROAD).
 //! - **Innovation gate**: the two rows' normalized innovation squared `νᵀ S⁻¹ ν` (`S = T P_θθ Tᵀ + r I`,
 //!   2 degrees of freedom) above [`Params::gate`] rejects the epoch's update (a linear acceleration the
 //!   norm did not flag). So that a filter that is wrong cannot lock itself out, after
@@ -53,7 +65,10 @@
 use quatprop::covariance::Ud;
 use quatprop::error_state::{GyroNoise, Step};
 use quatprop::frontend::FixedBias;
-use quatprop::{Error, GyroSample, Propagator, Quat, Real, Recommended, Vec3};
+use quatprop::input::Hold;
+use quatprop::scheme::ExpMap;
+use quatprop::stabilize::FirstOrder;
+use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
 
 /// The filter's parameters, in the units a datasheet uses (converted once, in [`Filter::new`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -107,8 +122,8 @@ impl Params {
             predict_every: if per >= 1.0 { per as u32 } else { 1 },
             gyro_arw: 0.5,
             gyro_bias_walk: 20.0,
-            gyro_scale: 0.01,
-            accel_noise: 1.0,
+            gyro_scale: 0.02,
+            accel_noise: 0.4,
             accel_floor: 0.005,
             gravity: 9.81,
             dynamic: 1.0,
@@ -224,7 +239,7 @@ pub struct Counts {
 /// The error-state Kalman filter ([module documentation](self)). `Copy`, allocation-free.
 #[derive(Clone, Copy, Debug)]
 pub struct Filter<T: Real> {
-    prop: Recommended<T>,
+    prop: Propagator<T, ExpMap, Hold, FirstOrder>,
     bias: FixedBias<T>,
     cov: Ud<T, 6>,
     /// The attitude at the start of the current covariance interval (after the last correction).
@@ -288,7 +303,7 @@ impl<T: Real> Filter<T> {
             }
         };
         let filter = Self {
-            prop: Propagator::recommended(Quat::IDENTITY)?,
+            prop: Propagator::new(Quat::IDENTITY, ExpMap, Hold::new(), FirstOrder)?,
             bias: FixedBias::new(Vec3::ZERO)?,
             cov: Ud::from_diagonal([T::ZERO; 6])?,
             q_start: Quat::IDENTITY,
