@@ -3,6 +3,10 @@
 //! unless `input-hold` or `input-linear` does (for the flash table). Exits 0 if a 1 rad/s yaw over 1000
 //! steps of 1 ms lands at 1 rad (quaternion components within 1e-4). With `baseline`: the same loop and
 //! exit without quatprop (exits 0), what the flash table subtracts to give the library's share.
+//! With `estimator-predict`, also the estimator's predict step every 10th step (`error_state::Step::between`
+//! the attitudes 10 ms apart, then `covariance::Ud::<f32, 6>::predict`); with `estimator`, also one scalar
+//! `Ud::update` and a correction (`rotate_body` + `correct_bias`) at the end: what the estimator's
+//! covariance adds to a firmware's flash.
 #![no_std]
 #![no_main]
 // The baseline names none of the configuration below.
@@ -10,6 +14,10 @@
 
 use core::hint::black_box;
 use cortex_m_rt::entry;
+#[cfg(feature = "estimator-predict")]
+use quatprop::covariance::Ud;
+#[cfg(feature = "estimator-predict")]
+use quatprop::error_state::{GyroNoise, Step};
 use quatprop::stabilize::FirstOrder;
 use quatprop::{input, scheme, GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::exit::exit;
@@ -68,11 +76,49 @@ fn main() -> ! {
     ) {
         Ok(mut p) => {
             let mut refused = false;
+            #[cfg(feature = "estimator-predict")]
+            let (noise, mut ud, mut start) = match (
+                GyroNoise::<f32>::from_noise_density_dps(0.0028, 5.0),
+                Ud::<f32, 6>::from_diagonal([1.0e-2, 1.0e-2, 1.0e-2, 1.0e-7, 1.0e-7, 1.0e-7]),
+            ) {
+                (Ok(n), Ok(u)) => (n, u, p.attitude()),
+                _ => exit(false),
+            };
             // 1001 samples: the first only starts the history.
-            for _ in 0..=1000 {
+            for _i in 0..=1000 {
                 // black_box: the inputs are data, as from a sensor.
                 let w = black_box(Vec3::new(0.0_f32, 0.0, 1.0));
                 refused |= p.push(GyroSample::new(w), black_box(1.0e-3)).is_err();
+                #[cfg(feature = "estimator-predict")]
+                if _i % 10 == 0 {
+                    let end = p.attitude();
+                    match Step::between(start, end, black_box(1.0e-2), &noise) {
+                        Ok(step) => {
+                            let (phi, q) = step.matrices();
+                            refused |= ud.predict(&phi, &q).is_err();
+                        }
+                        Err(_) => refused = true,
+                    }
+                    start = end;
+                }
+            }
+            #[cfg(feature = "estimator")]
+            {
+                // An inclination row; the innovation is data (zero here: the attitude stays exact).
+                let h = black_box([0.0_f32, -1.0, 0.0, 0.0, 0.0, 0.0]);
+                let innovation = black_box(0.0_f32);
+                match ud.update(&h, black_box(1.0e-3)) {
+                    Ok(g) => {
+                        let k = g.gain.map(|k| k * innovation);
+                        refused |= p.rotate_body(Vec3::new(k[0], k[1], k[2])).is_err();
+                        refused |= p.correct_bias(Vec3::new(k[3], k[4], k[5])).is_err();
+                    }
+                    Err(_) => refused = true,
+                }
+            }
+            #[cfg(feature = "estimator-predict")]
+            {
+                refused |= !ud.variances().iter().all(|v| *v > 0.0 && v.is_finite());
             }
             // 1 rad of yaw: q = (cos ½, 0, 0, sin ½).
             let q = p.attitude();

@@ -13,6 +13,12 @@
 //! and stabilizer's code; one image with the bursts on every zero-sized combination too would not fit the
 //! boards' 4 MB flash).
 //!
+//! The estimator's predict step and its corrections, in every image, with opaque inputs: `error_state`
+//! (`GyroNoise`, `Step::held_rate`, `Step::between`, `matrices`) and `covariance::Ud::<f32, 6>`
+//! (`from_diagonal`, `from_matrix`, `predict`, `update`, `matrix`, `variances`), once; and
+//! `Propagator::rotate_body`, `rotate_reference` and `correct_bias` for every input model × accumulator
+//! (beside the bursts: `correct_bias` is the input model's, the rotations go through the accumulator), with
+//! `FixedBias::correct` in the front end. The `nopanic-config` image calls the same three on `Configured`.
 //!
 //! With the feature `nopanic-config`, the image is the run-time configuration instead: a
 //! `config::Configured` built from an opaque `Config`, every call on it with rate samples and delta angles
@@ -32,6 +38,8 @@ use core::hint::black_box;
 use cortex_m_rt::entry;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
 use quatprop::config::{AccumulatorKind, Config, InputKind, Visit};
+use quatprop::covariance::Ud;
+use quatprop::error_state::{GyroNoise, Step};
 use quatprop::fixed::Q30Propagator;
 use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
@@ -126,7 +134,41 @@ fn bursts<I: Input, A: Accumulator<f32>>(input: I, accumulator: A) {
     if let Ok(mut clock) = TickClock::new(black_box(1.0e6), black_box(32)) {
         let _ = black_box(p.push_burst_timed(&timed, &mut clock));
     }
+    // An estimator's correction: the attitude in either frame, the bias the input model keeps.
+    let _ = black_box(p.rotate_body(black_box(Vec3::new(1.0e-3, -2.0e-3, 5.0e-4))));
+    let _ = black_box(p.rotate_reference(black_box(Vec3::new(-1.0e-3, 0.0, 2.0e-3))));
+    let _ = black_box(p.correct_bias(black_box(Vec3::new(1.0e-4, 0.0, -2.0e-4))));
     black_box((p.attitude(), p.steps(), p.saturated_samples()));
+}
+
+/// The estimator's predict step and update on opaque inputs: the error state's step (held rate and between
+/// two attitudes), the covariance's factorization, predict, update and read-outs.
+#[inline(never)]
+fn estimator() {
+    let Ok(noise) = GyroNoise::<f32>::new(black_box(8.7e-4), black_box(4.0e-6)) else {
+        return;
+    };
+    let dt = black_box(1.0e-2_f32);
+    let held = Step::held_rate(black_box(Vec3::new(0.01_f32, -0.02, 0.005)), dt, &noise);
+    let start = black_box(Quat::new(1.0_f32, 0.0, 0.0, 0.0));
+    let end = black_box(Quat::new(0.999_95_f32, 0.005, -0.005, 0.0));
+    let between = Step::between(start, end, dt, &noise);
+    let variances = black_box([1.0e-2_f32, 2.0e-3, 5.0e-4, 1.0e-6, 4.0e-7, 1.0e-7]);
+    let Ok(mut ud) = Ud::<f32, 6>::from_diagonal(variances) else {
+        return;
+    };
+    if let Ok(m) = Ud::<f32, 6>::from_matrix(&black_box(ud.matrix())) {
+        ud = m;
+    }
+    for step in [held, between].into_iter().flatten() {
+        let (phi, q) = step.matrices();
+        let _ = black_box(ud.predict(&black_box(phi), &black_box(q)));
+    }
+    let h = black_box([0.0_f32, -0.97, -0.2, 0.0, 0.0, 0.0]);
+    if let Ok(gain) = ud.update(&h, black_box(1.0e-3)) {
+        black_box(gain);
+    }
+    black_box((ud.matrix(), ud.variances(), ud.u(), ud.d()));
 }
 
 /// `bursts` on both accumulators (as the image's accumulator features select).
@@ -163,6 +205,9 @@ fn front_end() {
     };
     if let Ok(b) = FixedBias::new(black_box(Vec3::new(0.01_f32, 0.0, 0.0))) {
         black_box(b.apply(s));
+        if let Ok(b) = b.correct(black_box(Vec3::new(1.0e-4, 0.0, -2.0e-4))) {
+            black_box(b.apply(s));
+        }
     }
     if let Ok(e) = BiasEstimator::<f32>::new(black_box(1.0), black_box(1.0e-3), black_box(0.05)) {
         let e = e
@@ -294,6 +339,9 @@ fn configured() {
         let _ = black_box(p.push_burst_timed(&black_box([(w, 1_000_u32), (w, 2_000)]), &mut clock));
         let _ = black_box(p.push_burst_timed(&black_box([(d, 3_000_u32), (d, 4_000)]), &mut clock));
     }
+    let _ = black_box(p.rotate_body(black_box(Vec3::new(1.0e-3, -2.0e-3, 5.0e-4))));
+    let _ = black_box(p.rotate_reference(black_box(Vec3::new(-1.0e-3, 0.0, 2.0e-3))));
+    let _ = black_box(p.correct_bias(black_box(Vec3::new(1.0e-4, 0.0, -2.0e-4))));
     let _ = black_box(p.set_attitude(black_box(Quat::new(0.0, 1.0, 0.0, 0.0))));
     if black_box(true) {
         p.restart_input();
@@ -305,6 +353,7 @@ fn configured() {
 #[entry]
 fn main() -> ! {
     front_end();
+    estimator();
     if cfg!(feature = "nopanic-config") {
         configured();
         loop {
