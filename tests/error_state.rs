@@ -269,6 +269,17 @@ fn refusals() {
     // σ_b² Δt³ overflows f32.
     let loud = GyroNoise::<f32>::new(1e10, 1e10).unwrap();
     assert_eq!(Step::held_rate(v, 1e7, &loud), Err(Error::NonFiniteResult));
+    // f32 takes the step path's sine, which covers 8192 rad (f64: libm, any angle).
+    assert_eq!(
+        Step::held_rate(Vec3::new(0.0, 9000.0, 0.0), 1.0, &noise),
+        Err(Error::StepAngleBeyondStability {
+            step_angle: 9000.0,
+            limit: 8192.0
+        })
+    );
+    assert!(Step::held_rate(Vec3::new(0.0, 8000.0, 0.0), 1.0, &noise).is_ok());
+    let n64 = GyroNoise::<f64>::new(1e-3, 1e-5).unwrap();
+    assert!(Step::held_rate(Vec3::new(0.0, 9000.0, 0.0), 1.0, &n64).is_ok());
     let z = Quat::new(0.0, 0.0, 0.0, 0.0);
     assert_eq!(
         Step::between(z, Quat::IDENTITY, 1e-3, &noise),

@@ -45,6 +45,10 @@ pub struct Step<T> {
     pub noise: ProcessNoise<T>,
 }
 
+/// The largest rotation (rad) of one interval in f32: the step path's sine (`Float::sin_step`) covers
+/// `0 ≤ x ≤ 8192`.
+const SINE_LIMIT: f64 = 8192.0;
+
 /// The closed form's coefficients of `x = |φ|`: `sin x/x`, `(1 − cos x)/x²`, `(x − sin x)/x³`,
 /// `(x²/2 − 1 + cos x)/x⁴` and `(x³/3 + 2 sin x − 2x)/x⁵`.
 struct Coefficients<T> {
@@ -107,8 +111,10 @@ impl<T: Real> Coefficients<T> {
                 c4: series(x2, c4),
             }
         } else {
-            let x = x2.sqrt();
-            let (s, h) = (x.sin(), (x * T::HALF).sin());
+            // The step path's sine and square root (f32: no libm, no f64 code; NaN beyond 8192 rad,
+            // which `held_rate` refuses).
+            let x = x2.sqrt_step();
+            let (s, h) = (x.sin_step(), (x * T::HALF).sin_step());
             let one_minus_cos = T::TWO * h * h;
             let x3 = x2 * x;
             Self {
@@ -149,7 +155,9 @@ impl<T: Real> Step<T> {
     ///
     /// # Errors
     /// [`Error::NonFiniteRate`] for a NaN or infinite `phi`; [`Error::NonFiniteStep`] or
-    /// [`Error::NonPositiveStep`] for `dt`; [`Error::NonFiniteResult`] if the noise overflows.
+    /// [`Error::NonPositiveStep`] for `dt`; [`Error::StepAngleBeyondStability`] in f32 for `|phi|` beyond
+    /// 8192 rad (the step path's sine: no libm sine is linked); [`Error::NonFiniteResult`] if the noise
+    /// overflows.
     pub fn held_rate(phi: Vec3<T>, dt: T, noise: &GyroNoise<T>) -> Result<Self, Error> {
         if !phi.is_finite() {
             return Err(Error::NonFiniteRate);
@@ -194,6 +202,11 @@ impl<T: Real> Step<T> {
         };
         if step.is_finite() {
             Ok(step)
+        } else if T::EPSILON > T::from_f64(1e-10) && x2 > T::from_f64(SINE_LIMIT * SINE_LIMIT) {
+            Err(Error::StepAngleBeyondStability {
+                step_angle: x2.to_f64().sqrt(),
+                limit: SINE_LIMIT,
+            })
         } else {
             Err(Error::NonFiniteResult)
         }

@@ -101,6 +101,9 @@ fn step<T: Fz>(s: Result<Step<T>, Error>, phi_finite: bool, dt: T) {
                 Error::NonPositiveStep => assert!(dt.is_finite() && !(dt > T::ZERO)),
                 Error::NonFiniteStep => assert!(!dt.is_finite()),
                 Error::NonFiniteResult => assert!(dt_ok),
+                Error::StepAngleBeyondStability { step_angle, limit } => {
+                    assert!(T::NAME == "f32" && limit == 8192.0 && step_angle > limit && dt_ok)
+                }
                 Error::ZeroQuaternion | Error::NonFiniteQuaternion => {}
                 other => panic!("{}: unexpected {other:?}", T::NAME),
             }
