@@ -120,12 +120,18 @@ impl<T: Real, const N: usize> Ud<T, N> {
     /// [`Ud::predict`] with `D` carried to twice the working precision: each `d_j` is summed from exact
     /// products (Dekker's TwoProduct, Knuth's TwoSum) and its rounding kept for the next step.
     ///
-    /// Why: a variance that nothing observes (the heading of an inclination-only filter) grows by a `Q`
-    /// far below its own ulp at each step — in f32, the angle random walk of a MEMS gyro over 10 ms is
-    /// 1e-8 of a 5° heading variance, under half an ulp — and a plain sum drops every such increment: over
-    /// 10⁸ steps at 1 kHz the f32 heading variance ended 15 % below f64's (docs/covariance.md). Carried,
-    /// the increments accumulate as in f64. About three times the arithmetic of [`Ud::predict`]
-    /// (docs/firmware.md); [`Ud::update`] keeps the carried part consistent.
+    /// Why: a variance that nothing observes (the heading of an inclination-only filter on a still or
+    /// slowly turning body) grows by a `Q` far below its own ulp at each step — in f32, the angle random
+    /// walk of a MEMS gyro over 10 ms is 1e-8 of a 5° heading variance, under half an ulp — and a plain sum
+    /// drops every such increment (`tests/covariance.rs`: 10⁶ steps of 1e-11 on 1e-2, plain 1.0e-3 low,
+    /// compensated 6e-8). About twice the time of [`Ud::predict`] (docs/covariance.md, docs/firmware.md);
+    /// [`Ud::update`] keeps the carried part consistent.
+    ///
+    /// What it does not do: on a body that tumbles, the unobserved direction moves through the states at
+    /// every step and its growth is lost in the rounding of `U` and of the reduced rows as well, which this
+    /// does not carry; over 10⁸ steps at 1 kHz the f32 heading variance ended about 15 % below f64's either
+    /// way (docs/covariance.md). There, propagate the covariance less often (larger increments) or keep it
+    /// in f64.
     ///
     /// # Errors
     /// As [`Ud::predict`]; also when an exact product overflows (entries beyond about `MAX/4097`).

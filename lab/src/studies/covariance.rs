@@ -62,7 +62,7 @@ impl Study for Covariance {
     type Args = Args;
     const NAME: &'static str = "covariance";
     const ABOUT: &'static str =
-        "f32 covariance to 1e8 steps: naive, symmetrized Joseph and U-D factored against f64";
+        "f32 covariance to 1e8 steps: naive, symmetrized Joseph, U-D factored (plain and compensated) against f64";
     const CSV: &'static [CsvFile] = &[CsvFile::data::<PointRow>(), CsvFile::table::<SummaryRow>()];
     fn figures(&self) -> Vec<String> {
         vec!["covariance".into()]
