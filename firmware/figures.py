@@ -64,6 +64,8 @@ ESTIMATOR_ROWS = [("push", "the recommended push alone (in this program's loop)"
                   ("push+covariance-every-10th", "push + covariance every 10th step (amortized per attitude step)"),
                   ("Step::between", "`Step::between` alone (two attitudes 10 ms apart)"),
                   ("Ud::predict", "`Ud::<f32, 6>::predict` alone"),
+                  ("Ud::predict_compensated", "`Ud::<f32, 6>::predict_compensated` alone (`D` carried to twice "
+                   "the precision)"),
                   ("Ud::update", "one scalar `Ud::update` (an inclination row)"),
                   ("rotate_body+correct_bias", "a correction: `rotate_body` + `correct_bias`")]
 # The Cortex-M4F clock the estimator's times are given at (STM32F4).

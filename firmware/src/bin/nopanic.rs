@@ -15,7 +15,7 @@
 //!
 //! The estimator's predict step and its corrections, in every image, with opaque inputs: `error_state`
 //! (`GyroNoise`, `Step::held_rate`, `Step::between`, `matrices`) and `covariance::Ud::<f32, 6>`
-//! (`from_diagonal`, `from_matrix`, `predict`, `update`, `matrix`, `variances`), once; and
+//! (`from_diagonal`, `from_matrix`, `predict`, `predict_compensated`, `update`, `matrix`, `variances`), once; and
 //! `Propagator::rotate_body`, `rotate_reference` and `correct_bias` for every input model × accumulator
 //! (beside the bursts: `correct_bias` is the input model's, the rotations go through the accumulator), with
 //! `FixedBias::correct` in the front end. The `nopanic-config` image calls the same three on `Configured`.
@@ -163,6 +163,7 @@ fn estimator() {
     for step in [held, between].into_iter().flatten() {
         let (phi, q) = step.matrices();
         let _ = black_box(ud.predict(&black_box(phi), &black_box(q)));
+        let _ = black_box(ud.predict_compensated(&black_box(phi), &black_box(q)));
     }
     let h = black_box([0.0_f32, -0.97, -0.2, 0.0, 0.0, 0.0]);
     if let Ok(gain) = ud.update(&h, black_box(1.0e-3)) {

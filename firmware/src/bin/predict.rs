@@ -111,12 +111,23 @@ fn betweens(c: &Counter, qs: &[Quat<f32>; 9], noise: &GyroNoise<f32>, with: bool
 
 /// Instructions of `n` calls of `Ud::predict` on opaque `(Φ, Q)` pairs (or of the loop alone).
 #[inline(never)]
-fn predicts(c: &Counter, ud: &mut Ud<f32, 6>, m: &[StepMatrices; 4], with: bool, n: u32) -> u32 {
+fn predicts(
+    c: &Counter,
+    ud: &mut Ud<f32, 6>,
+    m: &[StepMatrices; 4],
+    with: bool,
+    compensated: bool,
+    n: u32,
+) -> u32 {
     let t0 = c.now();
     for i in 0..n as usize {
         let (phi, q) = black_box(&m[i & 3]);
         if with {
-            let _ = black_box(ud.predict(phi, q));
+            if compensated {
+                let _ = black_box(ud.predict_compensated(phi, q));
+            } else {
+                let _ = black_box(ud.predict(phi, q));
+            }
         }
     }
     Counter::instructions(Counter::ticks(t0, c.now()))
@@ -251,10 +262,15 @@ fn estimator(c: &Counter, ok: &mut bool) {
     }
     let m = black_box(m);
     ud = prior;
-    let with = predicts(c, &mut ud, &m, true, n);
+    let with = predicts(c, &mut ud, &m, true, false, n);
     *ok &= ud.variances().iter().all(|v| v.is_finite() && *v > 0.0);
-    let v = per(with, predicts(c, &mut ud, &m, false, n), n);
+    let v = per(with, predicts(c, &mut ud, &m, false, false, n), n);
     report("Ud::predict", v);
+    ud = prior;
+    let with = predicts(c, &mut ud, &m, true, true, n);
+    *ok &= ud.variances().iter().all(|v| v.is_finite() && *v > 0.0);
+    let v = per(with, predicts(c, &mut ud, &m, false, true, n), n);
+    report("Ud::predict_compensated", v);
 
     // One scalar update (an inclination row), alternating two rows.
     ud = prior;

@@ -145,6 +145,26 @@ fn quickstart_matches_the_firmware_bit_for_bit() {
     check_or_bless("quickstart.txt", &got);
 }
 
+#[test]
+fn estimator_matches_the_firmware_bit_for_bit() {
+    use crate::estimator_run::{len, line, run};
+    let mut got = format!("estimator samples={}\n", len());
+    let mut last = (0, 0);
+    run(|s| {
+        let b = line(s);
+        got += &format!(
+            "estimator {} {:08x} {:08x} {:08x} {:08x} bias {:08x} {:08x} {:08x} sigma {:08x} updates={} rejected={}\n",
+            s.samples, b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], s.updates, s.rejected
+        );
+        last = (s.samples, s.updates);
+    })
+    .expect("the estimator takes every sample of the excerpt");
+    assert_eq!(last.0, len());
+    assert!(last.1 > 0, "accelerometer updates were applied");
+    got += "estimator done\n";
+    check_or_bless("estimator.txt", &got);
+}
+
 /// The driver demo's SPI bus on the host: the scripted chip, every transaction recorded as an
 /// `embedded-hal-mock` expectation (and as raw bytes, to check the FIFO reads against the script).
 struct Recorder {
