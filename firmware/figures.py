@@ -416,6 +416,10 @@ def estimator_section(est, est_flash, flash, worst):
                  "closed form for a rotation beyond 2 rad per interval (`Real::sin` on `f32` is libm's, where the "
                  "propagator's large-angle branch uses quatprop's own `f32` sine); `hypotf`, `atanf` and "
                  "`sqrtf` with the rotation vector between the two attitudes.\n")
+    elif any("atanf" in n or "hypotf" in n for n, _ in added):
+        o.append("No libm sine: `Step`'s closed form takes quatprop's own `f32` sine and square root, as the "
+                 "propagator's large-angle branch does. libm's `atanf`, `hypotf` and `sqrtf` come with the "
+                 "rotation vector between the two attitudes (`Quat::to_rotation_vector` in `Step::between`).\n")
     between, predict, update, bound = worst["estimator"]
     o.append(f"Stack (painted by the `stack` program, bytes): `Step::between` with its `matrices()` "
              f"**{between}**; `Ud::predict` **{predict}** (the 168-byte `Ud` copied into the call included, `Φ` "

@@ -40,7 +40,7 @@ use crate::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use crate::frontend::{FixedPeriod, TickClock};
 use crate::input::coning::ConingKind;
 use crate::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use crate::propagator::{checked_unit, Counters};
+use crate::propagator::{beyond_increment_limit, checked_unit, Counters};
 use crate::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
 };
@@ -755,12 +755,17 @@ impl<T: Real> Configured<T> {
     /// [`Propagator::rotate_body`]: `q ← q ⊗ exp_q(dtheta)`, a correction in the body frame (rad).
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`] or [`Error::NonFiniteResult`]; the propagator is then unchanged.
+    /// [`Error::NonFiniteRate`], [`Error::StepAngleBeyondStability`] (f32, beyond 16384 rad) or
+    /// [`Error::NonFiniteResult`]; the propagator is then unchanged.
     pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
         if !dtheta.is_finite() {
             return Err(Error::NonFiniteRate);
         }
-        let d = self.q * Quat::rotation_increment(dtheta);
+        let e = Quat::rotation_increment(dtheta);
+        if !e.is_finite() {
+            return Err(beyond_increment_limit(dtheta));
+        }
+        let d = self.q * e;
         self.add_correction(d)
     }
 
@@ -768,12 +773,17 @@ impl<T: Real> Configured<T> {
     /// (rad).
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`] or [`Error::NonFiniteResult`]; the propagator is then unchanged.
+    /// [`Error::NonFiniteRate`], [`Error::StepAngleBeyondStability`] (f32, beyond 16384 rad) or
+    /// [`Error::NonFiniteResult`]; the propagator is then unchanged.
     pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
         if !dtheta.is_finite() {
             return Err(Error::NonFiniteRate);
         }
-        let d = Quat::rotation_increment(dtheta) * self.q;
+        let e = Quat::rotation_increment(dtheta);
+        if !e.is_finite() {
+            return Err(beyond_increment_limit(dtheta));
+        }
+        let d = e * self.q;
         self.add_correction(d)
     }
 

@@ -144,6 +144,15 @@ impl core::error::Error for Refused {
     }
 }
 
+/// A correction's rotation beyond what the step path's sine takes (f32: 16384 rad).
+#[cold]
+pub(crate) fn beyond_increment_limit<T: Real>(dtheta: Vec3<T>) -> Error {
+    Error::StepAngleBeyondStability {
+        step_angle: dtheta.to_f64().norm(),
+        limit: Quat::<T>::INCREMENT_ANGLE_LIMIT,
+    }
+}
+
 pub(crate) fn checked_unit<T: Real>(q0: Quat<T>) -> Result<Quat<T>, Error> {
     if !q0.is_finite() {
         return Err(Error::NonFiniteQuaternion);
@@ -469,13 +478,18 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// ```
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`] for a NaN or infinite component; [`Error::NonFiniteResult`] if the
-    /// result is not finite. The propagator is then unchanged.
+    /// [`Error::NonFiniteRate`] for a NaN or infinite component; [`Error::StepAngleBeyondStability`] in
+    /// f32 for a rotation beyond 16384 rad (the step path's sine; no libm sine is linked);
+    /// [`Error::NonFiniteResult`] if the result is not finite. The propagator is then unchanged.
     pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
         if !dtheta.is_finite() {
             return Err(Error::NonFiniteRate);
         }
-        let d = self.q * Quat::rotation_increment(dtheta);
+        let e = Quat::rotation_increment(dtheta);
+        if !e.is_finite() {
+            return Err(beyond_increment_limit(dtheta));
+        }
+        let d = self.q * e;
         self.add_correction(d)
     }
 
@@ -500,7 +514,11 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
         if !dtheta.is_finite() {
             return Err(Error::NonFiniteRate);
         }
-        let d = Quat::rotation_increment(dtheta) * self.q;
+        let e = Quat::rotation_increment(dtheta);
+        if !e.is_finite() {
+            return Err(beyond_increment_limit(dtheta));
+        }
+        let d = e * self.q;
         self.add_correction(d)
     }
 

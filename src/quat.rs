@@ -205,21 +205,19 @@ impl<T: Real> Quat<T> {
         }
     }
 
-    /// `exp_q(φ) − 1` for a rotation vector `φ` (rad) of any angle: the increment form of a rotation
-    /// (`q ⊗ exp_q(φ) = q + q ⊗ (exp_q(φ) − 1)`), free of the cancellation in `cos − 1` for small angles.
-    /// NaN components for a non-finite `φ`.
+    /// `exp_q(φ) − 1` for a rotation vector `φ` (rad): the increment form of a rotation (`q ⊗ exp_q(φ) = q
+    /// + q ⊗ (exp_q(φ) − 1)`), free of the cancellation in `cos − 1` for small angles, with the step path's
+    /// sine (no libm sine linked): NaN components beyond [`Self::INCREMENT_ANGLE_LIMIT`] in f32, or for a
+    /// non-finite `φ`.
     #[inline]
     #[must_use]
     pub(crate) fn rotation_increment(phi: Vec3<T>) -> Self {
-        let v = phi * T::HALF;
-        let m = Self::exp_half_minus_one(v);
-        if m.w.is_finite() {
-            m
-        } else {
-            let e = Self::exp_half_any_angle(v);
-            Self::from_parts(e.w - T::ONE, e.vector())
-        }
+        Self::exp_half_minus_one(phi * T::HALF)
     }
+
+    /// The largest rotation (rad) [`Self::rotation_increment`] takes in f32: the step path's sine covers
+    /// half angles up to 8192 rad.
+    pub(crate) const INCREMENT_ANGLE_LIMIT: f64 = 16384.0;
 
     /// [`Self::exp_half`] for any angle, with libm's general sine (its argument reduction covers every
     /// `T`). Out of line: a firmware that only steps never links it.

@@ -141,6 +141,18 @@ fn refusals_leave_everything_unchanged() {
         Err(Error::NonFiniteRate)
     );
     assert_eq!(p.correct_bias(nan), Err(Error::NonFiniteRate));
+    // f32 takes the step path's sine: half angles up to 8192 rad.
+    assert_eq!(
+        p.rotate_body(Vec3::new(0.0, 20000.0, 0.0)),
+        Err(Error::StepAngleBeyondStability {
+            step_angle: 20000.0,
+            limit: 16384.0
+        })
+    );
+    let mut q64 = Propagator::recommended(Quat::<f64>::IDENTITY).unwrap();
+    q64.rotate_reference(Vec3::new(0.0, 20000.0, 0.0)).unwrap();
+    let expected = Quat::from_rotation_vector(Vec3::new(0.0, 20000.0, 0.0));
+    assert!(q64.attitude().angle_to(expected) < 1e-11);
     // A kept sample that would overflow.
     let mut big = Propagator::new(Quat::IDENTITY, ExpMap, Linear::new(), FirstOrder).unwrap();
     big.start(GyroSample::new(Vec3::new(-3e38, 0.0, 0.0_f32)))
