@@ -148,7 +148,8 @@ impl core::error::Error for Refused {
 #[cold]
 pub(crate) fn beyond_increment_limit<T: Real>(dtheta: Vec3<T>) -> Error {
     Error::StepAngleBeyondStability {
-        step_angle: dtheta.to_f64().norm(),
+        // The step path's square root: no f64 arithmetic linked for a refusal.
+        step_angle: dtheta.norm_squared().sqrt_step().to_f64(),
         limit: Quat::<T>::INCREMENT_ANGLE_LIMIT,
     }
 }

@@ -204,7 +204,7 @@ impl<T: Real> Step<T> {
             Ok(step)
         } else if T::EPSILON > T::from_f64(1e-10) && x2 > T::from_f64(SINE_LIMIT * SINE_LIMIT) {
             Err(Error::StepAngleBeyondStability {
-                step_angle: x2.to_f64().sqrt(),
+                step_angle: x2.sqrt_step().to_f64(),
                 limit: SINE_LIMIT,
             })
         } else {
