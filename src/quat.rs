@@ -207,12 +207,21 @@ impl<T: Real> Quat<T> {
 
     /// `exp_q(φ) − 1` for a rotation vector `φ` (rad): the increment form of a rotation (`q ⊗ exp_q(φ) = q
     /// + q ⊗ (exp_q(φ) − 1)`), free of the cancellation in `cos − 1` for small angles, with the step path's
-    /// sine (no libm sine linked): NaN components beyond [`Self::INCREMENT_ANGLE_LIMIT`] in f32, or for a
-    /// non-finite `φ`.
+    /// sine (no libm sine linked in f32): NaN components beyond [`Self::INCREMENT_ANGLE_LIMIT`] in f32,
+    /// or for a non-finite `φ`; f64 takes any finite angle.
     #[inline]
     #[must_use]
     pub(crate) fn rotation_increment(phi: Vec3<T>) -> Self {
-        Self::exp_half_minus_one(phi * T::HALF)
+        let v = phi * T::HALF;
+        let m = Self::exp_half_minus_one(v);
+        // f64's step sine is libm's (any angle): only an overflowed |v|² fails it, and libm's hypot then
+        // takes the angle. f32 keeps its NaN (no libm sine linked; the caller refuses the rotation).
+        if m.w.is_finite() || T::EPSILON > T::from_f64(1e-10) {
+            m
+        } else {
+            let e = Self::exp_half_any_angle(v);
+            Self::from_parts(e.w - T::ONE, e.vector())
+        }
     }
 
     /// The largest rotation (rad) [`Self::rotation_increment`] takes in f32: the step path's sine covers

@@ -269,3 +269,18 @@ fn attitude_noise_across_a_huge_rotation_is_accurate_and_non_negative() {
         }
     }
 }
+
+/// Found by `estimator` (f64): a correction by a finite rotation whose |δθ|² overflows (1e160 rad) was
+/// refused as beyond f32's 16384 rad, a limit f64 does not have (its step sine is libm's). f64 now takes
+/// any finite angle there, through libm's hypot and sine, as `Quat::from_rotation_vector` does.
+#[test]
+fn an_f64_correction_takes_any_finite_angle() {
+    use quatprop::{Propagator, Quat, Vec3};
+    let d = Vec3::new(1e160, 0.0, 0.0);
+    let mut p = Propagator::recommended(Quat::<f64>::IDENTITY).unwrap();
+    p.rotate_body(d).unwrap();
+    assert!(p.attitude().angle_to(Quat::from_rotation_vector(d)) < 1e-15);
+    let mut r = Propagator::recommended(Quat::<f64>::IDENTITY).unwrap();
+    r.rotate_reference(d).unwrap();
+    assert_eq!(r.attitude(), p.attitude());
+}
