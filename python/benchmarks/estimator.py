@@ -350,15 +350,23 @@ def write_plot(results: List[TrialResult], path: Path) -> None:
         ax = fig.add_subplot(grid[i, 0])
         keep = r.mask
         t = np.where(keep, r.t, np.nan)
-        for m in METHODS:
-            ax.plot(t, np.where(keep, r.error[m], np.nan), lw=0.6, color=colors[m], label=TITLES[m])
-        ax.plot(t, np.where(keep, 3.0 * r.sigma, np.nan), lw=1.2, color="k", ls="--",
-                label="quatprop 3σ bound")
+        bound = np.where(keep, 3.0 * r.sigma, np.nan)
+        # The filter's 3σ as a band, the peers thin beneath quatprop's own error (drawn last, on top).
+        ax.fill_between(t, 0.0, bound, color="0.85", lw=0, label="quatprop 3σ bound")
+        for m in [m for m in METHODS if m != "quatprop"] + ["quatprop"]:
+            ax.plot(t, np.where(keep, r.error[m], np.nan), lw=0.9 if m == "quatprop" else 0.5,
+                    alpha=1.0 if m == "quatprop" else 0.7, color=colors[m], label=TITLES[m])
+        # The axis covers the bound and quatprop's and vqf's errors; a larger peer error is clipped (its RMS
+        # is in the bars below and the table).
+        top = max(np.nanpercentile(bound[keep], 99.9),
+                  *(np.nanpercentile(r.error[m][keep], 99.9) for m in ("quatprop", "vqf")))
+        clipped = np.nanmax(r.error["imufusion"][keep]) > 1.2 * top
         ax.set_title(f"{r.name}: inclination error, movement phase "
-                     f"(quatprop inside its 3σ: {100.0 * np.mean(inside(r)):.1f} %)")
+                     f"(quatprop inside its 3σ: {100.0 * np.mean(inside(r)):.1f} %)"
+                     + (" — imufusion clipped" if clipped else ""))
         ax.set_xlabel("time (s)")
         ax.set_ylabel("degrees")
-        ax.set_ylim(bottom=0.0)
+        ax.set_ylim(0.0, 1.2 * top)
         ax.legend(loc="upper right", fontsize=8)
     ax = fig.add_subplot(grid[len(shown), 0])
     x = np.arange(len(results))
