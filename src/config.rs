@@ -40,7 +40,7 @@ use crate::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use crate::frontend::{FixedPeriod, TickClock};
 use crate::input::coning::ConingKind;
 use crate::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use crate::propagator::{beyond_increment_limit, checked_unit, Counters};
+use crate::propagator::{checked_unit, correction_increment, Counters};
 use crate::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
 };
@@ -758,13 +758,7 @@ impl<T: Real> Configured<T> {
     /// [`Error::NonFiniteRate`], [`Error::StepAngleBeyondStability`] (f32, beyond 16384 rad) or
     /// [`Error::NonFiniteResult`]; the propagator is then unchanged.
     pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        if !dtheta.is_finite() {
-            return Err(Error::NonFiniteRate);
-        }
-        let e = Quat::rotation_increment(dtheta);
-        if !e.is_finite() {
-            return Err(beyond_increment_limit(dtheta));
-        }
+        let e = correction_increment(dtheta)?;
         let d = self.q * e;
         self.add_correction(d)
     }
@@ -776,13 +770,7 @@ impl<T: Real> Configured<T> {
     /// [`Error::NonFiniteRate`], [`Error::StepAngleBeyondStability`] (f32, beyond 16384 rad) or
     /// [`Error::NonFiniteResult`]; the propagator is then unchanged.
     pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        if !dtheta.is_finite() {
-            return Err(Error::NonFiniteRate);
-        }
-        let e = Quat::rotation_increment(dtheta);
-        if !e.is_finite() {
-            return Err(beyond_increment_limit(dtheta));
-        }
+        let e = correction_increment(dtheta)?;
         let d = e * self.q;
         self.add_correction(d)
     }

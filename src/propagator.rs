@@ -144,13 +144,21 @@ impl core::error::Error for Refused {
     }
 }
 
-/// A correction's rotation beyond what the step path's sine takes (f32: 16384 rad).
-#[cold]
-pub(crate) fn beyond_increment_limit<T: Real>(dtheta: Vec3<T>) -> Error {
-    Error::StepAngleBeyondStability {
-        // The step path's square root: no f64 arithmetic linked for a refusal.
-        step_angle: dtheta.norm_squared().sqrt_step().to_f64(),
-        limit: Quat::<T>::INCREMENT_ANGLE_LIMIT,
+/// `exp_q(dtheta) − 1` for a correction by the rotation vector `dtheta` (rad), validated: written once
+/// for the static and the run-time propagator.
+pub(crate) fn correction_increment<T: Real>(dtheta: Vec3<T>) -> Result<Quat<T>, Error> {
+    if !dtheta.is_finite() {
+        return Err(Error::NonFiniteRate);
+    }
+    let e = Quat::rotation_increment(dtheta);
+    if e.is_finite() {
+        Ok(e)
+    } else {
+        // f32 beyond the step path's sine; its square root: no f64 arithmetic linked for a refusal.
+        Err(Error::StepAngleBeyondStability {
+            step_angle: dtheta.norm_squared().sqrt_step().to_f64(),
+            limit: Quat::<T>::INCREMENT_ANGLE_LIMIT,
+        })
     }
 }
 
@@ -483,13 +491,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// f32 for a rotation beyond 16384 rad (the step path's sine; no libm sine is linked);
     /// [`Error::NonFiniteResult`] if the result is not finite. The propagator is then unchanged.
     pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        if !dtheta.is_finite() {
-            return Err(Error::NonFiniteRate);
-        }
-        let e = Quat::rotation_increment(dtheta);
-        if !e.is_finite() {
-            return Err(beyond_increment_limit(dtheta));
-        }
+        let e = correction_increment(dtheta)?;
         let d = self.q * e;
         self.add_correction(d)
     }
@@ -512,13 +514,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// # Errors
     /// As [`Propagator::rotate_body`].
     pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        if !dtheta.is_finite() {
-            return Err(Error::NonFiniteRate);
-        }
-        let e = Quat::rotation_increment(dtheta);
-        if !e.is_finite() {
-            return Err(beyond_increment_limit(dtheta));
-        }
+        let e = correction_increment(dtheta)?;
         let d = e * self.q;
         self.add_correction(d)
     }
