@@ -284,3 +284,41 @@ fn an_f64_correction_takes_any_finite_angle() {
     r.rotate_reference(d).unwrap();
     assert_eq!(r.attitude(), p.attitude());
 }
+
+/// Found by `estimator` (f32) in a CI run: a step with `|φ|²` just above 8192² and `dt` = 1e30 s was refused
+/// as `StepAngleBeyondStability { step_angle: 8192.0, limit: 8192.0 }`: the check compared `|φ|²` with
+/// 8192², while the sine is given `√|φ|²`, which rounds to exactly 8192 and is within its range. The step
+/// failed for its overflowing noise (`dt³`), which is `NonFiniteResult`; the check now compares the angle
+/// it reports, so a reported angle always exceeds its limit. (Its first form, `!(angle <= limit)`, was
+/// caught by the same target at once: a subnormal `|φ|²` has no f32 step-path root, NaN, and was reported
+/// as an angle beyond the limit; `fuzz/regressions/estimator/crash-cee6…`.)
+#[test]
+fn a_step_at_the_sine_limit_is_refused_for_what_failed() {
+    use quatprop::error_state::{GyroNoise, Step};
+    use quatprop::{Error, Vec3};
+    // |φ|² = 2²⁶ + 9, rounded to 2²⁶ + 8 in f32 (above 8192²); its square root rounds to 8192.
+    let phi = Vec3::new(8192.0_f32, 3.0, 0.0);
+    assert!(phi.norm_squared() > 8192.0 * 8192.0);
+    let noise = GyroNoise::new(1e-3_f32, 1e-5).unwrap();
+    assert_eq!(
+        Step::held_rate(phi, 1e30, &noise),
+        Err(Error::NonFiniteResult)
+    );
+    // A rotation whose |φ|² is subnormal, over the same interval: the noise overflowed, not the angle.
+    assert_eq!(
+        Step::held_rate(Vec3::new(1e-20_f32, 0.0, 0.0), 1e30, &noise),
+        Err(Error::NonFiniteResult)
+    );
+    // The same angle over a sane interval is within the sine's range and gives a finite step.
+    assert!(Step::held_rate(phi, 1e-3, &noise).is_ok());
+    // One ulp of the angle beyond the limit is refused, with an angle above the limit.
+    match Step::held_rate(Vec3::new(8192.001_f32, 0.0, 0.0), 1e-3, &noise) {
+        Err(Error::StepAngleBeyondStability { step_angle, limit }) => {
+            assert!(
+                step_angle > limit && limit == 8192.0,
+                "{step_angle} {limit}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -201,10 +201,15 @@ impl<T: Real> Step<T> {
             },
         };
         if step.is_finite() {
-            Ok(step)
-        } else if T::EPSILON > T::from_f64(1e-10) && x2 > T::from_f64(SINE_LIMIT * SINE_LIMIT) {
+            return Ok(step);
+        }
+        // The angle the sine was given, compared as it is reported: `|φ|²` just above 8192² can have a
+        // square root of exactly 8192 in f32, which the sine covers (the step then failed for another
+        // reason, e.g. an overflowing noise).
+        let angle = x2.sqrt_step();
+        if T::EPSILON > T::from_f64(1e-10) && angle > T::from_f64(SINE_LIMIT) {
             Err(Error::StepAngleBeyondStability {
-                step_angle: x2.sqrt_step().to_f64(),
+                step_angle: angle.to_f64(),
                 limit: SINE_LIMIT,
             })
         } else {

@@ -103,7 +103,11 @@ fn step<T: Fz>(s: Result<Step<T>, Error>, phi_finite: bool, dt: T) {
                 Error::NonFiniteStep => assert!(!dt.is_finite()),
                 Error::NonFiniteResult => assert!(dt_ok),
                 Error::StepAngleBeyondStability { step_angle, limit } => {
-                    assert!(T::NAME == "f32" && limit == 8192.0 && step_angle > limit && dt_ok)
+                    assert!(
+                        T::NAME == "f32" && limit == 8192.0 && step_angle > limit && dt_ok,
+                        "{}: step_angle {step_angle}, limit {limit}, dt {dt}",
+                        T::NAME
+                    )
                 }
                 Error::ZeroQuaternion | Error::NonFiniteQuaternion => {}
                 other => panic!("{}: unexpected {other:?}", T::NAME),
