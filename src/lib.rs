@@ -20,6 +20,7 @@ pub mod frontend;
 mod gauss;
 pub mod input;
 mod interop;
+pub mod noise;
 mod propagator;
 mod quat;
 mod real;

@@ -62,9 +62,10 @@
 //! # Ok::<(), quatprop::Error>(())
 //! ```
 
-mod noise;
 mod step;
 
-pub use noise::GyroNoise;
+/// The gyro's noise densities the predict step takes (defined in [`crate::noise`], where they are also
+/// identified from a recording).
+pub use crate::noise::GyroNoise;
 pub use step::{ProcessNoise, Step, Transition};
 pub(crate) use step::{SERIES_TERMS, STEP_SERIES};

@@ -238,4 +238,18 @@ impl Xorshift {
     pub fn signed(&mut self) -> f64 {
         self.uniform() * 2.0 - 1.0
     }
+
+    /// Another stream: the generator started from `seed` (mixed, so neighbouring seeds are unrelated).
+    pub fn with_seed(seed: u64) -> Self {
+        let mut g = Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+        g.uniform();
+        g
+    }
+
+    /// A standard normal deviate (Box–Muller).
+    pub fn gaussian(&mut self) -> f64 {
+        let u = 1.0 - self.uniform(); // (0, 1]
+        let v = self.uniform();
+        (-2.0 * u.ln()).sqrt() * (2.0 * core::f64::consts::PI * v).cos()
+    }
 }

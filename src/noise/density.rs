@@ -1,5 +1,6 @@
-//! A gyro's noise in the units its datasheet gives.
+//! A gyro's noise densities, from a datasheet or from an Allan variance fit.
 
+use super::{NoiseFit, FLICKER_FLOOR};
 use crate::{Error, Real};
 
 /// The white noise and the bias random walk of a gyro, as spectral densities in SI units: `arw` (rad/√s
@@ -89,6 +90,25 @@ impl<T: Real> GyroNoise<T> {
         }
         let sigma = sigma_deg_per_hour * DEG / 3600.0;
         Self::new(self.arw, T::from_f64(sigma * libm::sqrt(2.0 / tau)))
+    }
+
+    /// From an Allan variance fit of the gyro at rest ([`NoiseFit`], in rad/s): the white noise's density
+    /// as the angle random walk, and as the bias random walk the fitted rate random walk plus the bias
+    /// instability taken as a Gauss–Markov bias whose correlation time is the longest τ fitted
+    /// (`K² + 2σ_B²/τ_max`, `σ_B = 0.664 B` the floor: as [`GyroNoise::with_bias_instability`]). A term
+    /// the recording did not identify counts with its fitted value (often zero): give a datasheet's value
+    /// with [`GyroNoise::new`] where the recording was too short to show it.
+    ///
+    /// # Errors
+    /// [`Error::InvalidNoise`] if a density is not finite (a fit of no points cannot be made).
+    pub fn from_fit(fit: &NoiseFit) -> Result<Self, Error> {
+        let floor = FLICKER_FLOOR * fit.instability.coefficient;
+        let tau = fit.tau_range.1;
+        let walk = fit.random_walk.coefficient + if tau > 0.0 { 2.0 * floor / tau } else { 0.0 };
+        Self::new(
+            T::from_f64(fit.white.value()),
+            T::from_f64(libm::sqrt(walk)),
+        )
     }
 
     /// The angle random walk (rad/√s): the white rate noise's density `σ_g`.
