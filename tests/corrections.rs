@@ -171,7 +171,7 @@ fn refusals_leave_everything_unchanged() {
         Err(Error::NonFiniteRate)
     );
 
-    let mut est = BiasEstimator::<f32>::from_samples(4, 0.1, 8).unwrap();
+    let mut est = BiasEstimator::<f32>::from_samples(4, 1e-3, 0.1).unwrap();
     for _ in 0..8 {
         est.update(GyroSample::new(Vec3::new(0.01, 0.0, 0.0)))
             .unwrap();

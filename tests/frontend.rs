@@ -369,20 +369,21 @@ fn front_end_constructors_refuse_bad_values_with_typed_errors() {
         );
         let est = BiasEstimator::<f32>::new(0.01, 1.0e-3, 0.05).unwrap();
         assert_eq!(
-            est.with_initial(Vec3::new(bad, 0.0, 0.0)),
+            est.with_initial(Vec3::new(bad, 0.0, 0.0), 1e-3),
             Err(Error::NonFiniteRate)
         );
         assert_eq!(
-            BiasEstimator::<f32>::from_samples(10, bad, 64),
+            BiasEstimator::<f32>::from_samples(10, 1e-3, bad),
             Err(Error::InvalidEstimator)
         );
+        assert_eq!(est.with_drift(bad), Err(Error::InvalidEstimator));
     }
     assert_eq!(
-        BiasEstimator::<f32>::from_samples(10, 0.05, 0),
+        BiasEstimator::<f32>::from_samples(10, 0.0, 0.05),
         Err(Error::InvalidEstimator)
     );
     assert_eq!(
-        BiasEstimator::<f32>::from_samples(10, 0.0, 64),
+        BiasEstimator::<f32>::from_samples(10, 1e-3, 0.0),
         Err(Error::InvalidEstimator)
     );
     // A tick too long to split exactly (beyond f32::MAX / 2^27 s) and one that underflows f32.

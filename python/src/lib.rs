@@ -22,6 +22,7 @@ use quatprop::frontend::{
     MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::ConingKind;
+use quatprop::noise::GyroNoise;
 use quatprop::input::{History, InputModel};
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Stabilizer, StabilizerKind};
@@ -342,24 +343,40 @@ impl<T: Real> Session<T> {
         let (fixed, estimator) = match (args.bias, args.estimator) {
             (None, None) => (None, None),
             (Some(b), None) => (Some(FixedBias::new(vec3(b)).map_err(config_error)?), None),
-            (None, Some((window, gate, memory, initial, change, accel_gate, span, _))) => {
-                let mut e = BiasEstimator::from_samples(window, T::from_f64(gate), memory)
-                    .map_err(config_error)?;
-                if let Some(c) = change {
-                    e = e.with_change(T::from_f64(c)).map_err(config_error)?;
+            (None, Some(e)) => {
+                // The estimator's sample period: its own, else the stream's fixed period or tick.
+                let period = e
+                    .period
+                    .or(args.period)
+                    .or(args.tick_hz.map(|hz| 1.0 / hz))
+                    .ok_or_else(|| {
+                        PyValueError::new_err(
+                            "BiasEstimator needs a sample period: give the stream dt= or BiasEstimator(period=...)",
+                        )
+                    })?;
+                let mut est =
+                    BiasEstimator::new(e.window, period, T::from_f64(e.gate)).map_err(config_error)?;
+                if let Some(d) = e.drift {
+                    est = est.with_drift(T::from_f64(d)).map_err(config_error)?;
                 }
-                if let Some(g) = accel_gate {
-                    e = e.with_accel_gate(T::from_f64(g)).map_err(config_error)?;
+                if let Some(n) = e.noise {
+                    let noise = GyroNoise::new(T::from_f64(n), T::ZERO).map_err(config_error)?;
+                    est = est.with_noise(&noise).map_err(config_error)?;
                 }
-                if let Some(s) = span {
-                    e = e
+                if let Some(g) = e.accel_gate {
+                    est = est.with_accel_gate(T::from_f64(g)).map_err(config_error)?;
+                }
+                if let Some(s) = e.span {
+                    est = est
                         .with_temperature_model(T::from_f64(s))
                         .map_err(config_error)?;
                 }
-                if let Some(b) = initial {
-                    e = e.with_initial(vec3(b)).map_err(config_error)?;
+                if let Some((b, sigma)) = e.initial {
+                    est = est
+                        .with_initial(vec3(b), T::from_f64(sigma))
+                        .map_err(config_error)?;
                 }
-                (None, Some(e))
+                (None, Some(est))
             }
             _ => {
                 return Err(PyValueError::new_err(
@@ -375,11 +392,11 @@ impl<T: Real> Session<T> {
         let timing = timing
             .with_group_delay(T::from_f64(args.group_delay))
             .map_err(config_error)?;
-        let motion = match (args.estimator, &clock) {
-            (Some((.., true)), Clock::Fixed(_)) => {
+        let motion = match (&args.estimator, &clock) {
+            (Some(e), Clock::Fixed(_)) if e.motion => {
                 Some(MotionBias::new(args.period.unwrap_or(f64::NAN)).map_err(config_error)?)
             }
-            (Some((.., true)), _) => {
+            (Some(e), _) if e.motion => {
                 return Err(PyValueError::new_err(
                     "the motion bias estimator needs a fixed period (dt=)",
                 ))
@@ -574,19 +591,23 @@ struct StreamArgs {
     count_scale: Option<(bool, f64)>,
 }
 
-/// A bias estimator as Python passes it: window (samples), gate (rad/s), memory (windows), initial bias
-/// (rad/s), change threshold (rad/s; None: the core's default), acceleration gate, temperature span, and
-/// whether the residual bias is also learned in motion from the accelerometer (`MotionBias`).
-type EstimatorArgs = (
-    u32,
-    f64,
-    u32,
-    Option<[f64; 3]>,
-    Option<f64>,
-    Option<f64>,
-    Option<f64>,
-    bool,
-);
+/// A bias estimator as Python passes it (`quatprop.BiasEstimator`): the window (s), the gate (rad/s), the
+/// sample period (s; None: the stream's), the drift (rad/s/√s; None: the core's default), the white noise
+/// density (rad/√s; None: the scatter at rest is learned), an initial bias (rad/s) with its standard
+/// deviation, an acceleration gate, a temperature span, and whether the residual bias is also learned in
+/// motion from the accelerometer (`MotionBias`).
+#[derive(Clone, Copy, Debug, FromPyObject)]
+struct EstimatorArgs {
+    window: f64,
+    gate: f64,
+    period: Option<f64>,
+    drift: Option<f64>,
+    noise: Option<f64>,
+    initial: Option<([f64; 3], f64)>,
+    accel_gate: Option<f64>,
+    span: Option<f64>,
+    motion: bool,
+}
 
 /// A calibration as Python passes it: offset (rad/s), sensitivity, misalignment (rows).
 type CalibrationArgs = ([f64; 3], [f64; 3], [[f64; 3]; 3]);
@@ -889,11 +910,12 @@ impl NativeStream {
         }
     }
 
-    /// The bias subtracted now (rad/s, body axes): the estimator's estimate or the fixed bias.
+    /// The bias subtracted now (rad/s, body axes): the estimator's estimate (with the residual learned
+    /// in motion, when it runs: both are subtracted) or the fixed bias.
     fn bias(&self) -> Option<[f64; 3]> {
         fn of<T: Real>(s: &Session<T>) -> Option<[f64; 3]> {
             let b = match (s.estimator, s.fixed) {
-                (Some(e), _) => e.bias(),
+                (Some(e), _) => e.bias() + s.motion.map_or(Vec3::ZERO, |m| m.bias()),
                 (None, Some(f)) => f.bias(),
                 (None, None) => return None,
             };

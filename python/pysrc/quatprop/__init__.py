@@ -85,49 +85,51 @@ class RefusedSample(ValueError):
 
 @dataclass(frozen=True)
 class BiasEstimator:
-    """Learns the gyro bias while the body is still and follows it when it changes (the core's
-    ``frontend::BiasEstimator``).
+    """Learns the gyro bias while the body is still, follows it as it drifts and when it steps at rest —
+    without taking a slow turn or the end of a motion for a bias (the core's ``frontend::BiasEstimator``).
 
-    Samples are taken in windows of ``window`` samples; a window in which every axis (minus the current
-    estimate) stays within ``gate`` rad/s is *still* (with ``accel_gate``, also every acceleration within
-    that gate of the window's first, per axis). The first still window sets the estimate; one that agrees
-    with it refines it (running mean over the last ``memory`` still windows). One that disagrees by more
-    than ``change`` rad/s (default 5e-4, the core's ``DEFAULT_CHANGE``) and five standard errors is a
-    candidate; if the next still window agrees with the candidate the estimate restarts from the two: a
-    bias step at rest is followed within three windows. ``change=float("inf")`` never restarts.
-    ``temperature_span`` (the temperatures' unit) fits bias(T), a line per axis, through the still windows
-    and applies it once their temperatures have that standard deviation. ``initial`` (rad/s) starts from a
-    known bias.
-
-    A rotation slower than ``gate`` on every axis held for two windows is learned as bias: a gyroscope
-    alone cannot tell them apart (an accelerometer tells a hand-held rotation, not a turn about the
-    vertical).
+    Samples are taken in windows of ``window`` seconds, each cut into 8 blocks. A window is *still* when
+    every sample (minus the estimate) stays within ``gate`` rad/s on every axis (with ``accel_gate``, also
+    every acceleration within that gate of the window's first) and its block means scatter no more than
+    at rest (the scatter at rest is learned from the still windows, or given by ``noise_density``); the
+    accelerations' block means, when ``acc`` is given, must be flat too. Each still window is a
+    measurement of a bias that walks with density ``drift`` (rad/s/√s): a Kalman filter. A still window
+    more than five standard deviations off the estimate is taken for a slow turn, not a bias, until the
+    drift says the bias could have moved that far: ``drift`` is the one knob between following a changing
+    bias and keeping a slow turn (docs/bias.md plots it against Fusion's and VQF's). A step at rest (two
+    flat levels in one window, the first at the estimate) is followed within two windows.
 
     Attributes:
-        window: samples per window (1 to 2**31-1), e.g. ``round(1.0 / dt)`` for one second.
+        window: the window's length (s), e.g. 1.0.
         gate: stillness gate (rad/s), e.g. 3 °/s = 0.0524 rad/s.
-        memory: still windows in the running mean (1 to 2**31-1).
-        initial: a known bias to start from (rad/s, body axes), counted as one window.
-        change: the smallest disagreement (rad/s) that can start a change; None for the default.
+        drift: the bias's random walk density (rad/s/√s); None: the core's ``DEFAULT_DRIFT`` (1e-4).
+        noise_density: the gyro's white noise (rad/√s = rad/s/√Hz, a datasheet's or identified with
+            :func:`allan`); None: the scatter at rest is learned from the still windows.
+        initial: a known bias to start from (rad/s, body axes), with ``initial_sigma``.
+        initial_sigma: the standard deviation of ``initial`` (rad/s): how far the bias may have moved.
         accel_gate: acceleration gate per axis, in the unit of the ``acc`` given to :meth:`Stream.update`
-            (e.g. 0.5 m/s²); None: rest judged by the rates alone.
+            (e.g. 0.5 m/s²); None: no gate (the accelerations' flatness is tested whenever ``acc`` is given).
         temperature_span: the temperature spread (standard deviation, the unit of ``temperature``) from
             which the bias(T) line is applied; None: no temperature model.
         motion: also learn the residual bias in motion from the accelerometer (the core's
             ``frontend::MotionBias``: VQF's motion bias estimation, on the rates corrected at rest; it
             restarts at zero whenever a still window is learned). Needs ``acc`` (in the gyro's axes,
             m/s² or any unit) and a fixed period (``dt=``). The accelerometer informs the bias only; the
-            attitude is the gyro's.
+            attitude is the gyro's. :attr:`Stream.bias` is then the sum of both: what is subtracted.
+        period: the sample period (s); None: the stream's ``dt`` (or its tick period). Needed with
+            timestamps.
     """
 
-    window: int
+    window: float
     gate: float
-    memory: int = 64
+    drift: Optional[float] = None
+    noise_density: Optional[float] = None
     initial: Optional[Sequence[float]] = None
-    change: Optional[float] = None
+    initial_sigma: Optional[float] = None
     accel_gate: Optional[float] = None
     temperature_span: Optional[float] = None
     motion: bool = False
+    period: Optional[float] = None
 
     def _native(self):
         initial = None
@@ -135,14 +137,33 @@ class BiasEstimator:
             ia = np.asarray(self.initial, dtype=np.float64)
             if ia.shape != (3,):
                 raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
-            initial = [float(c) for c in ia]
-        for name, v in (("window", self.window), ("memory", self.memory)):
-            if not isinstance(v, (int, np.integer)) or not 1 <= v <= 2**31 - 1:
-                raise ValueError(f"BiasEstimator.{name} must be an integer in 1 .. 2**31-1, got {v!r}")
+            if self.initial_sigma is None:
+                raise ValueError("BiasEstimator.initial needs initial_sigma (rad/s)")
+            initial = ([float(c) for c in ia], float(self.initial_sigma))
+        if isinstance(self.window, (int, np.integer)) and self.window > 100:
+            raise ValueError(f"BiasEstimator.window is in seconds now, got {self.window!r} (samples?)")
+
         def opt(v):
             return None if v is None else float(v)
-        return (int(self.window), float(self.gate), int(self.memory), initial, opt(self.change),
-                opt(self.accel_gate), opt(self.temperature_span), bool(self.motion))
+
+        return _EstimatorArgs(float(self.window), float(self.gate), opt(self.period), opt(self.drift),
+                              opt(self.noise_density), initial, opt(self.accel_gate),
+                              opt(self.temperature_span), bool(self.motion))
+
+
+@dataclass(frozen=True)
+class _EstimatorArgs:
+    """What the native layer reads (by attribute) from a :class:`BiasEstimator`."""
+
+    window: float
+    gate: float
+    period: Optional[float]
+    drift: Optional[float]
+    noise: Optional[float]
+    initial: Optional[tuple]
+    accel_gate: Optional[float]
+    span: Optional[float]
+    motion: bool
 
 
 @dataclass(frozen=True)
@@ -320,7 +341,7 @@ class Stream:
 
     Example::
 
-        s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=1000, gate=0.02))
+        s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=1.0, gate=0.02))
         for chunk in fifo_reads:            # (n, 3) rad/s each
             q = s.update(chunk)             # (n, 4): the attitude after each sample
         s.attitude, s.bias, s.steps, s.refused
