@@ -32,7 +32,7 @@ static int prepare(quatprop_t *s, const quatprop_config_t *c) {
     static const float r[9] = {0.0f, 0.6f, 0.8f, -1.0f, 0.0f, 0.0f, 0.0f, -0.8f, 0.6f};
     if (quatprop_init(s, c) != QUATPROP_OK) return 0;
     int ok = quatprop_set_count_scale_dps(s, 2000.0) == QUATPROP_OK && quatprop_set_alignment_matrix(s, r) == QUATPROP_OK
-             && quatprop_set_bias_estimator(s, 8, 0.05f, 4) == QUATPROP_OK && quatprop_set_fixed_period(s, 1e-3) == QUATPROP_OK
+             && quatprop_set_bias_estimator(s, 8e-3, 1e-3, 0.05f, QUATPROP_DEFAULT_DRIFT) == QUATPROP_OK && quatprop_set_fixed_period(s, 1e-3) == QUATPROP_OK
              && quatprop_set_tick_clock(s, 1e6, 32) == QUATPROP_OK;
     quatprop_sample_t w[40];
     for (int i = 0; i < 40; i++) w[i] = (quatprop_sample_t){1e-3f * i, 2e-3f, 0.5f + 1e-2f * i, 0};

@@ -113,8 +113,9 @@ static void bad_configuration(void) {
     REFUSED(&s, quatprop_set_alignment_matrix(&s, shear), QUATPROP_NOT_A_ROTATION);
     const float mirror[9] = {-1, 0, 0, 0, 1, 0, 0, 0, 1};
     REFUSED(&s, quatprop_set_alignment_matrix(&s, mirror), QUATPROP_NOT_A_ROTATION);
-    REFUSED(&s, quatprop_set_bias_estimator(&s, 0, 0.05f, 64), QUATPROP_INVALID_ESTIMATOR);
-    REFUSED(&s, quatprop_set_bias_estimator(&s, 1000, NAN, 64), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&s, quatprop_set_bias_estimator(&s, 0.0, 1e-3, 0.05f, QUATPROP_DEFAULT_DRIFT), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&s, quatprop_set_bias_estimator(&s, 1.0, 1e-3, NAN, QUATPROP_DEFAULT_DRIFT), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&s, quatprop_set_bias_estimator(&s, 1.0, 1e-3, 0.05f, -1.0f), QUATPROP_INVALID_ESTIMATOR);
     /* A calibration that is singular, or not finite, is refused; the state stays as it was. */
     const float offset[3] = {0.01f, -0.02f, 0.005f}, unit[3] = {1, 1, 1}, flat[3] = {1, 0, 1};
     const float ident[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, nan_m[9] = {1, 0, 0, 0, NAN, 0, 0, 0, 1};

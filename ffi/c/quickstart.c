@@ -12,7 +12,7 @@ quatprop_status_t attitude_init(quatprop_t *att) {
     if (e == QUATPROP_OK) e = quatprop_set_count_scale_dps(att, 2000.0);
     if (e == QUATPROP_OK) e = quatprop_set_axis_remap(att, QUATPROP_REMAP_PY_NX_PZ);
     /* Learns the bias over 1 s windows while every axis stays within 0.05 rad/s (2.9 deg/s). */
-    if (e == QUATPROP_OK) e = quatprop_set_bias_estimator(att, 1000, 0.05f, 64);
+    if (e == QUATPROP_OK) e = quatprop_set_bias_estimator(att, 1.0, 1e-3, 0.05f, QUATPROP_DEFAULT_DRIFT);
     if (e == QUATPROP_OK) e = quatprop_set_fixed_period(att, 1.0e-3);
     return e;
 }

@@ -16,18 +16,20 @@
  * Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
  * 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
  * 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
+ * 4: the state is 1024 bytes (the bias estimator keeps its window's blocks and a Kalman filter's
+ * variance); `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift.
  */
-#define QUATPROP_ABI_VERSION 3
+#define QUATPROP_ABI_VERSION 4
 
 /**
  * `uint64_t` words in `quatprop_t`.
  */
-#define QUATPROP_STATE_WORDS 64
+#define QUATPROP_STATE_WORDS 128
 
 /**
  * Size of `quatprop_t` in bytes (same on every target).
  */
-#define QUATPROP_STATE_SIZE 512
+#define QUATPROP_STATE_SIZE 1024
 
 /**
  * Alignment of `quatprop_t` in bytes.
@@ -224,6 +226,11 @@
 #define QUATPROP_REMAP_NZ_NY_NX 23
 
 /**
+ * The default `drift` of [`quatprop_set_bias_estimator`] (rad/s/√s): the Rust `BiasEstimator`'s.
+ */
+#define QUATPROP_DEFAULT_DRIFT 2.0e-5
+
+/**
  * Result of every call. Values are fixed (ABI); 1 to 16 mirror `quatprop::Error`.
  */
 typedef enum {
@@ -280,7 +287,8 @@ typedef enum {
    */
   QUATPROP_INVALID_CLOCK = 12,
   /**
-   * Bias estimator: window and memory must be positive, the gate finite and positive.
+   * Bias estimator: the window must hold 1 to 2^31 − 1 samples, the period be finite and positive, the
+   * gate finite and positive, the drift finite and not negative.
    */
   QUATPROP_INVALID_ESTIMATOR = 13,
   /**
@@ -575,17 +583,22 @@ quatprop_status_t quatprop_clear_calibration(quatprop_t *s);
 quatprop_status_t quatprop_set_fixed_bias(quatprop_t *s, const float *b);
 
 /**
- * Learns the bias while the body is still: windows of `window` samples (1 to 2^31 - 1) in which every
- * axis stays within `gate` rad/s (finite, > 0) of the bias, averaged over the last `memory` windows
- * (at least 1; 64 is the Rust default). `QUATPROP_INVALID_ESTIMATOR` otherwise.
+ * Learns the bias while the body is still, follows it as it drifts and when it steps at rest, and keeps
+ * slow turns (the Rust `frontend::BiasEstimator`): windows of `window_seconds` (s) of samples taken every
+ * `sample_period` (s), each cut into 8 blocks; a window is still when every axis stays within `gate`
+ * rad/s (finite, > 0) of the bias and its block means are flat; the bias walks with density `drift`
+ * (rad/s/√s, ≥ 0; `QUATPROP_DEFAULT_DRIFT` for the default): the one knob between following a changing
+ * bias and keeping a slow turn. `QUATPROP_INVALID_ESTIMATOR` for a window under one or over 2^31 − 1
+ * samples, a period not finite and positive, or a bad gate or drift.
  *
  * # Safety
  * `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
  */
 quatprop_status_t quatprop_set_bias_estimator(quatprop_t *s,
-                                              uint32_t window,
+                                              double window_seconds,
+                                              double sample_period,
                                               float gate,
-                                              uint32_t memory);
+                                              float drift);
 
 /**
  * Removes the bias stage.

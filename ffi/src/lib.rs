@@ -39,11 +39,13 @@ use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 /// Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
 /// 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
 /// 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
-pub const QUATPROP_ABI_VERSION: u32 = 3;
+/// 4: the state is 1024 bytes (the bias estimator keeps its window's blocks and a Kalman filter's
+/// variance); `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift.
+pub const QUATPROP_ABI_VERSION: u32 = 4;
 /// `uint64_t` words in `quatprop_t`.
-pub const QUATPROP_STATE_WORDS: usize = 64;
+pub const QUATPROP_STATE_WORDS: usize = 128;
 /// Size of `quatprop_t` in bytes (same on every target).
-pub const QUATPROP_STATE_SIZE: usize = 512;
+pub const QUATPROP_STATE_SIZE: usize = 1024;
 /// Alignment of `quatprop_t` in bytes.
 pub const QUATPROP_STATE_ALIGN: usize = 8;
 
@@ -56,9 +58,9 @@ pub struct quatprop_t {
     pub _opaque: [u64; QUATPROP_STATE_WORDS],
 }
 
-/// "QPF3": the tag `quatprop_init` writes (version 3: the state is stored encoded and checksummed, in
-/// 512 bytes; a version-2 block is refused as corrupted).
-const MAGIC: u32 = 0x5150_4633;
+/// "QPF4": the tag `quatprop_init` writes (version 4: the state is stored encoded and checksummed, in
+/// 1024 bytes; a block of an earlier version is refused as corrupted).
+const MAGIC: u32 = 0x5150_4634;
 
 /// The block's layout: the tag (word 0), the encoded length in bytes (word 1), the checksum (word 2),
 /// then the state encoded with postcard (`state::Inner`) and zeros to the end of the block.
@@ -157,7 +159,8 @@ pub enum quatprop_status_t {
     QUATPROP_TIMESTAMP_NOT_INCREASING = 11,
     /// Clock counter width outside 1 to 32 bits.
     QUATPROP_INVALID_CLOCK = 12,
-    /// Bias estimator: window and memory must be positive, the gate finite and positive.
+    /// Bias estimator: the window must hold 1 to 2^31 − 1 samples, the period be finite and positive, the
+    /// gate finite and positive, the drift finite and not negative.
     QUATPROP_INVALID_ESTIMATOR = 13,
     /// The step overflowed to a non-finite attitude.
     QUATPROP_NON_FINITE_RESULT = 14,
@@ -769,23 +772,33 @@ pub unsafe extern "C" fn quatprop_set_fixed_bias(
     }
 }
 
-/// Learns the bias while the body is still: windows of `window` samples (1 to 2^31 - 1) in which every
-/// axis stays within `gate` rad/s (finite, > 0) of the bias, averaged over the last `memory` windows
-/// (at least 1; 64 is the Rust default). `QUATPROP_INVALID_ESTIMATOR` otherwise.
+/// The default `drift` of [`quatprop_set_bias_estimator`] (rad/s/√s): the Rust `BiasEstimator`'s.
+pub const QUATPROP_DEFAULT_DRIFT: f32 = 2.0e-5;
+
+/// Learns the bias while the body is still, follows it as it drifts and when it steps at rest, and keeps
+/// slow turns (the Rust `frontend::BiasEstimator`): windows of `window_seconds` (s) of samples taken every
+/// `sample_period` (s), each cut into 8 blocks; a window is still when every axis stays within `gate`
+/// rad/s (finite, > 0) of the bias and its block means are flat; the bias walks with density `drift`
+/// (rad/s/√s, ≥ 0; `QUATPROP_DEFAULT_DRIFT` for the default): the one knob between following a changing
+/// bias and keeping a slow turn. `QUATPROP_INVALID_ESTIMATOR` for a window under one or over 2^31 − 1
+/// samples, a period not finite and positive, or a bad gate or drift.
 ///
 /// # Safety
 /// `s` must be NULL or point to a `quatprop_t` not in use elsewhere.
 #[no_mangle]
 pub unsafe extern "C" fn quatprop_set_bias_estimator(
     s: *mut quatprop_t,
-    window: u32,
+    window_seconds: f64,
+    sample_period: f64,
     gate: f32,
-    memory: u32,
+    drift: f32,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
     unsafe {
         with(s, |st| {
-            st.front.bias = Bias::Estimator(BiasEstimator::from_samples(window, gate, memory)?);
+            st.front.bias = Bias::Estimator(
+                BiasEstimator::new(window_seconds, sample_period, gate)?.with_drift(drift)?,
+            );
             Ok(())
         })
     }

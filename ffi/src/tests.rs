@@ -26,21 +26,22 @@ fn largest() -> state::Inner {
     let m = [[1.0, 0.01, -0.02], [0.003, 1.0, 0.01], [-0.01, 0.02, 1.0]];
     let cal = Calibration::new(Vec3::new(0.01, -0.02, 0.03), Vec3::new(1.01, 0.99, 1.02), m);
     inner.front.calibration = Some(cal.unwrap());
-    // The estimator with every option and every optional part of its state present: a candidate change,
-    // the temperature line, the window's acceleration reference.
-    let mut est = BiasEstimator::from_samples(2, 0.05, i32::MAX as u32)
+    // The estimator with every option and every optional part of its state present: a level waiting to
+    // be confirmed, the temperature line, the window's acceleration sums and reference, a window half
+    // summed (windows of 16 samples, blocks of 2).
+    let mut est = BiasEstimator::from_samples(16, 1.0e-3, 0.05)
         .and_then(|e| e.with_accel_gate(0.5))
         .and_then(|e| e.with_temperature_model(1.0))
+        .and_then(|e| e.with_drift(1.0e-4))
         .unwrap();
-    for (k, b) in [0.0, 0.0, 0.001, 0.001, 0.01, 0.01, 0.02]
-        .into_iter()
-        .enumerate()
-    {
+    for k in 0..37 {
+        let b = if k < 16 { 0.0 } else { 0.01 };
+        let n = if k % 2 == 0 { 1e-4 } else { -1e-4 };
         let aux = Aux {
-            accel: Some(Vec3::new(0.1, 0.2, 9.8)),
-            temperature: Some(25.0 + 3.0 * k as f32),
+            accel: Some(Vec3::new(0.1 + n, 0.2 - n, 9.8 + n)),
+            temperature: Some(25.0 + 0.1 * k as f32),
         };
-        est.update_with(GyroSample::new(Vec3::new(b, -b, b)), aux)
+        est.update_with(GyroSample::new(Vec3::new(b + n, -b - n, b + n)), aux)
             .unwrap();
     }
     inner.front.bias = Bias::Estimator(est);
@@ -54,9 +55,9 @@ fn the_largest_state_fits_its_block_with_room() {
     let inner = largest();
     let mut buf = [0u8; 1024];
     let len = postcard::to_slice(&inner, &mut buf).unwrap().len();
-    // Integers are varints: the counters (three u64, 1 → 10 bytes) and up to eleven u32 fields (pending, the
-    // estimator's and the clock's counts, 1 → 5 bytes) can grow.
-    let worst = len + 3 * 9 + 11 * 4;
+    // Integers are varints: the counters (three u64, 1 → 10 bytes) and up to fourteen u32 fields (pending,
+    // the estimator's eight and the clock's counts, 1 → 5 bytes) can grow.
+    let worst = len + 3 * 9 + 14 * 4;
     println!("encoded state: {len} bytes, at most {worst} of {PAYLOAD}");
     assert!(worst <= PAYLOAD, "{worst} > {PAYLOAD}");
 }
@@ -108,4 +109,13 @@ fn the_header_states_each_schemes_step_angle_bound() {
         };
         assert!(doc.contains(&stated), "{name}: {stated} not in {doc:?}");
     }
+}
+
+/// The C default is the Rust one (a `#define` in the header cannot name the Rust constant).
+#[test]
+fn the_default_drift_is_the_libraries() {
+    assert_eq!(
+        QUATPROP_DEFAULT_DRIFT,
+        BiasEstimator::<f32>::DEFAULT_DRIFT as f32
+    );
 }
