@@ -1354,6 +1354,18 @@ pub extern "C" fn quatprop_status_name(status: i32) -> *const core::ffi::c_char 
     name.as_ptr()
 }
 
+/// Bench hook (feature `bench-hooks` only; not in the header): the checksum of the block behind `s` (0 for
+/// a NULL or misaligned `s`), so `ffi/ci` can time the state's check on its own.
+///
+/// # Safety
+/// `s` must be NULL or point to a readable `quatprop_t`.
+#[cfg(feature = "bench-hooks")]
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_bench_checksum(s: *const quatprop_t) -> u32 {
+    // SAFETY: forwarded contract.
+    unsafe { block(s) }.map_or(0, checksum)
+}
+
 /// Test hook of the link-time proof (feature `panic-selftest` only): a reachable panic.
 #[cfg(feature = "panic-selftest")]
 #[no_mangle]
