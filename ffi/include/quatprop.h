@@ -16,8 +16,9 @@
  * Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
  * 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
  * 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
+ * 4: the state's check is a CRC-32C over the whole block, in its last 4 bytes (tag "QPF4").
  */
-#define QUATPROP_ABI_VERSION 3
+#define QUATPROP_ABI_VERSION 4
 
 /**
  * `uint64_t` words in `quatprop_t`.
@@ -325,8 +326,9 @@ typedef enum {
    */
   QUATPROP_BAD_ARGUMENT = 106,
   /**
-   * The state's bytes changed since the library last wrote them (its checksum or its encoding does not
-   * match: retained RAM after a reset, a stray write, a partial copy). Nothing was read from it.
+   * The state's bytes changed since the library last wrote them (its CRC-32C or its encoding does not
+   * match: retained RAM after a reset, a stray write, a partial copy), or an older version of the library
+   * wrote them. Nothing was read from it.
    */
   QUATPROP_CORRUPTED_STATE = 107,
 } quatprop_status_t;
