@@ -12,6 +12,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* The version of quatprop this header belongs to; quatprop_version() returns the library's. */
+#define QUATPROP_VERSION "0.3.0"
+
 /**
  * Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
  * 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
@@ -816,8 +819,9 @@ quatprop_status_t quatprop_get_norm_error(const quatprop_t *s, float *out);
 quatprop_status_t quatprop_get_counters(const quatprop_t *s, quatprop_counters_t *out);
 
 /**
- * The library's version, a static NUL-terminated string (e.g. "0.2.0"): compare it with what the
- * firmware was built against, e.g. in a boot log. Never NULL.
+ * The library's version, a static NUL-terminated string (the crate's version, equal to the header's
+ * `QUATPROP_VERSION` when library and header match): compare it with what the firmware was built
+ * against, e.g. in a boot log. Never NULL.
  */
 const char *quatprop_version(void);
 

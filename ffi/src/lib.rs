@@ -1451,8 +1451,9 @@ pub unsafe extern "C" fn quatprop_get_counters(
     }
 }
 
-/// The library's version, a static NUL-terminated string (e.g. "0.2.0"): compare it with what the
-/// firmware was built against, e.g. in a boot log. Never NULL.
+/// The library's version, a static NUL-terminated string (the crate's version, equal to the header's
+/// `QUATPROP_VERSION` when library and header match): compare it with what the firmware was built
+/// against, e.g. in a boot log. Never NULL.
 #[no_mangle]
 pub extern "C" fn quatprop_version() -> *const core::ffi::c_char {
     const VERSION: &core::ffi::CStr = match core::ffi::CStr::from_bytes_with_nul(
