@@ -3,7 +3,7 @@
 //! of bits of two configurations' states through `load` (what every call runs first), the code's distance
 //! and bursts from its syndromes, seeded random damage, and the C entry points on a sample.
 //!
-//! The counts are printed (`cargo test --release check -- --nocapture`); the CRC's are asserted to be zero,
+//! The counts are printed (in ffi/: `cargo test check -- --nocapture`); the CRC's are asserted to be zero,
 //! ABI 3's pair count to be non-zero (the damage is the kind that hash missed).
 
 use super::super::*;
