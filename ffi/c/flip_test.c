@@ -1,9 +1,12 @@
 /* A state that checks itself (gcc -fsanitize=address,undefined): in every configuration — input model (and
  * each coning correction of the delta angles) x scheme x stabilizer x accumulator, with every front-end part
- * set and samples integrated — every byte of the state is changed (xor 0x01, 0x80, 0xff), and each changed
- * state is handed to a getter, a single push and a burst. Each call must return an error code
- * (QUATPROP_NOT_INITIALIZED for the tag's 4 bytes, QUATPROP_CORRUPTED_STATE for the others), leave the
- * bytes as they were, and never crash (the sanitizers and the signal handlers would end the run). */
+ * set and samples integrated — every bit of the state is flipped on its own, every byte is inverted (xor
+ * 0xff), 4096 random pairs of bits are flipped and 1024 random runs of 2 to 32 bytes changed, and each
+ * changed state is handed to a getter, a single push and a burst. Each call must return an error code
+ * (QUATPROP_NOT_INITIALIZED when the tag's 4 bytes changed, QUATPROP_CORRUPTED_STATE otherwise), leave the
+ * bytes as they were, and never crash (the sanitizers and the signal handlers would end the run). Every pair
+ * of bits of two states, and random multi-byte damage, are tried against the check itself by
+ * ffi/src/tests/check.rs. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -19,12 +22,39 @@ static void crashed(int sig) {
 
 static unsigned long calls, refused, wrong, changed;
 
-static void expect(quatprop_status_t got, size_t byte, const quatprop_t *flipped, const quatprop_t *after) {
-    quatprop_status_t want = byte < 4 ? QUATPROP_NOT_INITIALIZED : QUATPROP_CORRUPTED_STATE;
+/* Where the tag is (ffi/src/lib.rs's TAG): a state whose tag changed is not a state (NOT_INITIALIZED). */
+#define TAG_AT 500u
+
+static void expect(quatprop_status_t got, const quatprop_t *good, const quatprop_t *flipped, const quatprop_t *after) {
+    int tag_changed = memcmp((const uint8_t *)good + TAG_AT, (const uint8_t *)flipped + TAG_AT, 4) != 0;
+    quatprop_status_t want = tag_changed ? QUATPROP_NOT_INITIALIZED : QUATPROP_CORRUPTED_STATE;
     calls++;
     if (got == want) refused++;
-    else if (wrong++ < 10) printf("FAIL byte %zu: got %s\n", byte, quatprop_status_name((int32_t)got));
+    else if (wrong++ < 10) printf("FAIL got %s, want %s\n", quatprop_status_name((int32_t)got), quatprop_status_name((int32_t)want));
     if (memcmp(flipped, after, sizeof *after) != 0) changed++;
+}
+
+/* Hands the changed state `bad` to a getter, a single push and a burst. */
+static void try_state(const quatprop_t *good, const quatprop_t *bad, int deltas) {
+    quatprop_t after;
+    quatprop_quat_t q;
+    memcpy(&after, bad, sizeof after);
+    expect(quatprop_get_attitude(&after, &q), good, bad, &after);
+    quatprop_sample_t one = {0.1f, 0.2f, 0.3f, 0};
+    expect(deltas ? quatprop_push_delta(&after, &one, 1e-3f) : quatprop_push_rate(&after, &one, 1e-3f), good, bad, &after);
+    const int16_t counts[2][3] = {{10, -20, 30}, {11, -21, 31}};
+    size_t n = 99;
+    expect(quatprop_push_counts_burst(&after, &counts[0][0], 2, &n), good, bad, &after);
+    if (n != 99) wrong++; /* not written: the state could not be read */
+}
+
+/* xorshift32: the same random pairs on every run. */
+static uint32_t rng_state = 0x9E3779B9u;
+static uint32_t rng(void) {
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 17;
+    rng_state ^= rng_state << 5;
+    return rng_state;
 }
 
 /* A state in configuration `c` with every front-end part, after 40 samples. 0 if init refused it. */
@@ -52,7 +82,8 @@ int main(void) {
     signal(SIGILL, crashed);
     signal(SIGTRAP, crashed);
     signal(SIGFPE, crashed);
-    static const uint8_t flips[3] = {0x01, 0x80, 0xff};
+    static const uint8_t flips[9] = {0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0xff};
+    enum { PAIRS = 4096, RUNS = 1024 };
     unsigned configs = 0, states = 0;
     for (uint32_t in = 0; in <= QUATPROP_INPUT_DELTA_ANGLES; in++)
         for (uint32_t cn = 0; cn <= (in == QUATPROP_INPUT_DELTA_ANGLES ? QUATPROP_CONING_FIVE_SAMPLE : 0); cn++)
@@ -62,33 +93,40 @@ int main(void) {
                         quatprop_config_t c;
                         quatprop_config_default(&c);
                         c.input = in; c.coning = cn; c.scheme = sc; c.stabilizer = st; c.every = 3; c.accumulator = acc;
-                        quatprop_t good;
+                        quatprop_t good, bad;
                         if (!prepare(&good, &c)) {
                             printf("FAIL configuration %u/%u/%u/%u/%u\n", in, cn, sc, st, acc);
                             return 1;
                         }
                         configs++;
+                        int deltas = in == QUATPROP_INPUT_DELTA_ANGLES;
                         for (size_t byte = 0; byte < sizeof good; byte++)
-                            for (int f = 0; f < 3; f++) {
-                                quatprop_t bad, after;
+                            for (int f = 0; f < 9; f++) {
                                 memcpy(&bad, &good, sizeof bad);
                                 ((uint8_t *)&bad)[byte] ^= flips[f];
                                 states++;
-                                quatprop_quat_t q;
-                                memcpy(&after, &bad, sizeof after);
-                                expect(quatprop_get_attitude(&after, &q), byte, &bad, &after);
-                                quatprop_sample_t one = {0.1f, 0.2f, 0.3f, 0};
-                                expect(in == QUATPROP_INPUT_DELTA_ANGLES ? quatprop_push_delta(&after, &one, 1e-3f)
-                                                                         : quatprop_push_rate(&after, &one, 1e-3f),
-                                       byte, &bad, &after);
-                                const int16_t counts[2][3] = {{10, -20, 30}, {11, -21, 31}};
-                                size_t n = 99;
-                                expect(quatprop_push_counts_burst(&after, &counts[0][0], 2, &n), byte, &bad, &after);
-                                if (n != 99) wrong++; /* not written: the state could not be read */
+                                try_state(&good, &bad, deltas);
                             }
+                        for (int k = 0; k < PAIRS; k++) {
+                            uint32_t i = rng() % (8 * sizeof good), j = rng() % (8 * sizeof good);
+                            if (i == j) continue;
+                            memcpy(&bad, &good, sizeof bad);
+                            ((uint8_t *)&bad)[i / 8] ^= (uint8_t)(1u << (i % 8));
+                            ((uint8_t *)&bad)[j / 8] ^= (uint8_t)(1u << (j % 8));
+                            states++;
+                            try_state(&good, &bad, deltas);
+                        }
+                        for (int k = 0; k < RUNS; k++) {
+                            uint32_t len = 2 + rng() % 31, at = rng() % (uint32_t)(sizeof good - len + 1);
+                            memcpy(&bad, &good, sizeof bad);
+                            for (uint32_t b = at; b < at + len; b++) ((uint8_t *)&bad)[b] ^= (uint8_t)(1u | rng());
+                            states++;
+                            try_state(&good, &bad, deltas);
+                        }
                     }
-    printf("flip: %u configurations, %u changed states (every byte of %zu, 3 changes each), %lu calls: "
-           "%lu refused with the expected code, %lu not, %lu changed a state, 0 crashes\n",
-           configs, states, sizeof(quatprop_t), calls, refused, wrong, changed);
+    printf("flip: %u configurations, %u changed states (each of the %zu bytes: every bit flipped, and inverted;"
+           " %d random pairs of bits; %d runs of 2 to 32 bytes each changed), %lu calls: %lu refused with the expected"
+           " code, %lu not, %lu changed a state, 0 crashes\n",
+           configs, states, sizeof(quatprop_t), PAIRS, RUNS, calls, refused, wrong, changed);
     return wrong != 0 || changed != 0;
 }

@@ -3,7 +3,10 @@
  * firmware/expected/quickstart.txt), then the instructions per sample of on_fifo (SysTick under
  * `-icount shift=10`, as firmware/src/bin/bench.rs). Built twice: with the C API (default) and with
  * -DRUST_BASELINE, the Rust quick start's statically typed Attitude behind the same harness, and with
- * -DRUST_KINDS, the same with the core's run-time SchemeKind and StabilizerKind. */
+ * -DRUST_KINDS, the same with the core's run-time SchemeKind and StabilizerKind. The C API's build also
+ * times single pushes (quatprop_push_counts, one sample per call: the state's check, decoding and encoding
+ * paid every call) and the state's checksum alone (quatprop_bench_checksum, feature bench-hooks), beside ABI 3's
+ * word hash it replaced (quatprop_bench_checksum_abi3). */
 #include <stdint.h>
 #include "board.h"
 #include "quickstart.h"
@@ -66,6 +69,41 @@ static uint32_t timed(uint32_t bursts, uint32_t *refused) {
     return board_instructions(t0, board_counter_now());
 }
 
+#if !defined(RUST_BASELINE) && !defined(RUST_KINDS)
+uint32_t quatprop_bench_checksum(const quatprop_t *s);
+uint32_t quatprop_bench_checksum_abi3(const quatprop_t *s);
+/* Single pushes per measured run (the 24-bit SysTick holds about 655 000 instructions). */
+#define QS_CALLS 32u
+/* Checksums per measured run. */
+#define QS_SUMS 64u
+static volatile uint32_t sink;
+
+/* `calls` single pushes of the bench's samples at 1 ms. */
+static uint32_t timed_single(uint32_t calls) {
+    if (!start(&att)) return 0;
+    uint32_t bad = 0, t0 = board_counter_now();
+    for (uint32_t i = 0; i < calls; i++) bad += quatprop_push_counts(&att, fifo[i % 32], 1.0e-3) != QUATPROP_OK;
+    uint32_t n = board_instructions(t0, board_counter_now());
+    return bad ? 0 : n;
+}
+
+/* `calls` checksums of the state's block (`sum`: the CRC-32C, or ABI 3's word hash). */
+static uint32_t timed_sums(uint32_t (*sum)(const quatprop_t *), uint32_t calls) {
+    if (!start(&att)) return 0;
+    uint32_t t0 = board_counter_now();
+    for (uint32_t i = 0; i < calls; i++) sink += sum(&att);
+    return board_instructions(t0, board_counter_now());
+}
+
+static char *put_fixed2(char *p, uint32_t hundredths) {
+    p = put_dec(p, hundredths / 100);
+    *p++ = '.';
+    *p++ = (char)('0' + hundredths / 10 % 10);
+    *p++ = (char)('0' + hundredths % 10);
+    return p;
+}
+#endif
+
 int main(void) {
     char line[160], *p;
     uint32_t refused = 0;
@@ -114,6 +152,27 @@ int main(void) {
     p = put_str(p, " (samples=256, bursts of 32)\n");
     *p = 0;
     board_puts(line);
+#if !defined(RUST_BASELINE) && !defined(RUST_KINDS)
+    uint32_t one = timed_single(QS_CALLS), none = timed_single(0);
+    uint32_t per_call = (uint32_t)((uint64_t)(one - none) * 100u / QS_CALLS);
+    p = put_str(line, "bench c push_counts per-call ");
+    p = put_fixed2(p, per_call);
+    p = put_str(p, " (calls=32, one sample each)\n");
+    *p = 0;
+    board_puts(line);
+    uint32_t (*const sums[2])(const quatprop_t *) = {quatprop_bench_checksum, quatprop_bench_checksum_abi3};
+    const char *const names[2] = {"bench c checksum per-block ", "bench c checksum-abi3 per-block "};
+    for (int k = 0; k < 2; k++) {
+        uint32_t full_sums = timed_sums(sums[k], QS_SUMS), no_sums = timed_sums(sums[k], 0);
+        uint32_t per_sum = (uint32_t)((uint64_t)(full_sums - no_sums) * 100u / QS_SUMS);
+        p = put_str(line, names[k]);
+        p = put_fixed2(p, per_sum);
+        p = put_str(p, " (calls=64)\n");
+        *p = 0;
+        board_puts(line);
+    }
+    if (one == 0) refused++;
+#endif
     board_puts("quickstart done\n");
     return refused != 0 || r2 != 0;
 }

@@ -133,10 +133,11 @@ static void bad_configuration(void) {
     quatprop_quat_t zero = {0, 0, 0, 0};
     REFUSED(&s, quatprop_set_attitude(&s, &zero), QUATPROP_ZERO_QUATERNION);
     CHECK(strcmp(quatprop_status_name(QUATPROP_OK), "QUATPROP_OK") == 0);
-    /* The library's version at run time: "major.minor.patch", and the header's ABI version. */
+    /* The library's version at run time: "major.minor.patch", the header's; and the header's ABI version. */
     const char *v = quatprop_version();
     const char *dot = v ? strchr(v, '.') : NULL;
     CHECK(dot != NULL && strchr(dot + 1, '.') != NULL);
+    CHECK(strcmp(v, QUATPROP_VERSION) == 0);
     CHECK(quatprop_abi_version() == QUATPROP_ABI_VERSION);
     CHECK(strcmp(quatprop_status_name(QUATPROP_BAD_ENUM), "QUATPROP_BAD_ENUM") == 0);
     CHECK(strcmp(quatprop_status_name(999), "unknown status") == 0);

@@ -12,12 +12,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* The version of quatprop this header belongs to; quatprop_version() returns the library's. */
+#define QUATPROP_VERSION "0.3.0"
+
 /**
  * Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
  * 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
  * 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
  * 4: the state is 1024 bytes (the bias estimator keeps its window's blocks and a Kalman filter's
- * variance); `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift.
+ * variance; `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift),
+ * and its check is a CRC-32C over the whole block, in its last 4 bytes (tag "QPF4").
  */
 #define QUATPROP_ABI_VERSION 4
 
@@ -333,8 +337,9 @@ typedef enum {
    */
   QUATPROP_BAD_ARGUMENT = 106,
   /**
-   * The state's bytes changed since the library last wrote them (its checksum or its encoding does not
-   * match: retained RAM after a reset, a stray write, a partial copy). Nothing was read from it.
+   * The state's bytes changed since the library last wrote them (its CRC-32C or its encoding does not
+   * match: retained RAM after a reset, a stray write, a partial copy), or an older version of the library
+   * wrote them. Nothing was read from it.
    */
   QUATPROP_CORRUPTED_STATE = 107,
 } quatprop_status_t;
@@ -827,8 +832,9 @@ quatprop_status_t quatprop_get_norm_error(const quatprop_t *s, float *out);
 quatprop_status_t quatprop_get_counters(const quatprop_t *s, quatprop_counters_t *out);
 
 /**
- * The library's version, a static NUL-terminated string (e.g. "0.2.0"): compare it with what the
- * firmware was built against, e.g. in a boot log. Never NULL.
+ * The library's version, a static NUL-terminated string (the crate's version, equal to the header's
+ * `QUATPROP_VERSION` when library and header match): compare it with what the firmware was built
+ * against, e.g. in a boot log. Never NULL.
  */
 const char *quatprop_version(void);
 

@@ -40,7 +40,8 @@ use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 /// 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
 /// 3: the state is 512 bytes (the bias estimator follows changes and can model temperature).
 /// 4: the state is 1024 bytes (the bias estimator keeps its window's blocks and a Kalman filter's
-/// variance); `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift.
+/// variance; `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift),
+/// and its check is a CRC-32C over the whole block, in its last 4 bytes (tag "QPF4").
 pub const QUATPROP_ABI_VERSION: u32 = 4;
 /// `uint64_t` words in `quatprop_t`.
 pub const QUATPROP_STATE_WORDS: usize = 128;
@@ -58,15 +59,26 @@ pub struct quatprop_t {
     pub _opaque: [u64; QUATPROP_STATE_WORDS],
 }
 
-/// "QPF4": the tag `quatprop_init` writes (version 4: the state is stored encoded and checksummed, in
-/// 1024 bytes; a block of an earlier version is refused as corrupted).
+/// "QPF4": the tag `quatprop_init` writes (version 4: the state stored encoded at the end of the block's
+/// data, sealed by a CRC-32C in its last 4 bytes).
 const MAGIC: u32 = 0x5150_4634;
+/// The tags older versions wrote, "QPF2" (384 bytes) and "QPF3" (512 bytes, a word hash as checksum),
+/// both in word 0: such a block, kept in retained RAM across a firmware update, is
+/// `QUATPROP_CORRUPTED_STATE`, not taken for a block never set up.
+const OLD_MAGICS: [u32; 2] = [0x5150_4632, 0x5150_4633];
 
-/// The block's layout: the tag (word 0), the encoded length in bytes (word 1), the checksum (word 2),
-/// then the state encoded with postcard (`state::Inner`) and zeros to the end of the block.
-const HEADER: usize = 12;
-/// Bytes for the encoded state.
-const PAYLOAD: usize = QUATPROP_STATE_SIZE - HEADER;
+/// The block's layout, in bytes: zeros `[0, z)`, the state encoded with postcard (`state::Inner`) in
+/// `[z, z + length)` (`z`: the last multiple of 4 that leaves room for it), zeros to `PAYLOAD`, the tag
+/// `[1012, 1016)`, the encoding's length `[1016, 1020)` (both native-endian), and the checksum
+/// `[SUM, 1024)`: the CRC-32C of the 1020 bytes before it, stored little-endian, so the whole block is one
+/// CRC codeword (data, then its CRC) and a burst anywhere in it is a burst of the codeword. The zeros come
+/// first so that the CRC can start after them (`START`).
+const PAYLOAD: usize = QUATPROP_STATE_SIZE - 12;
+/// Where the tag starts (the length follows it).
+const TAG: usize = PAYLOAD;
+/// Where the checksum starts.
+const SUM: usize = QUATPROP_STATE_SIZE - 4;
+const _: () = assert!(TAG + 8 == SUM);
 
 /// The block as bytes.
 type Block = [u8; QUATPROP_STATE_SIZE];
@@ -77,18 +89,130 @@ const _: () = assert!(align_of::<quatprop_t>() == QUATPROP_STATE_ALIGN);
 const _: () = assert!(QUATPROP_STATE_WORDS * 8 == QUATPROP_STATE_SIZE);
 const _: () = assert!(size_of::<Block>() == size_of::<quatprop_t>());
 
-/// The checksum of a block: every 32-bit word but the checksum's own (word 2), each step
-/// `h ← (h ⊕ w) · 16777619` (FNV's prime). Each step is a bijection of `h` for a given word and of the word
-/// for a given `h`, so blocks that differ in one word (any single changed byte) never share a checksum.
-fn checksum(b: &Block) -> u32 {
-    let mut h: u32 = 0x811C_9DC5;
-    for (i, w) in b.chunks_exact(4).enumerate() {
-        if i != 2 {
-            let word = u32::from_ne_bytes([w[0], w[1], w[2], w[3]]);
-            h = (h ^ word).wrapping_mul(0x0100_0193);
+/// CRC-32C (Castagnoli; polynomial 0x1EDC6F41, reflected 0x82F63B78; initial register and final xor
+/// 0xFFFFFFFF), sliced by 8: `TABLES[0]` is the byte-wise table, `TABLES[k][i]` the register change of byte
+/// `i` followed by `k` zero bytes. 8 KB of flash, built at compile time.
+static TABLES: [[u32; 256]; 8] = {
+    let mut t = [[0u32; 256]; 8];
+    let mut i = 0;
+    while i < 256 {
+        let mut c = i as u32;
+        let mut bit = 0;
+        while bit < 8 {
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0x82F6_3B78
+            } else {
+                c >> 1
+            };
+            bit += 1;
         }
+        t[0][i] = c;
+        i += 1;
     }
-    h
+    let mut k = 1;
+    while k < 8 {
+        let mut i = 0;
+        while i < 256 {
+            let p = t[k - 1][i];
+            t[k][i] = (p >> 8) ^ t[0][(p & 0xFF) as usize];
+            i += 1;
+        }
+        k += 1;
+    }
+    t
+};
+
+/// `START[z]`: the CRC-32C register after `z` zero bytes from its initial value 0xFFFFFFFF (4 KB of flash,
+/// built at compile time). A block's leading zeros are not read twice: checked to be zero, then skipped.
+static START: [u32; PAYLOAD + 1] = {
+    let mut s = [0u32; PAYLOAD + 1];
+    s[0] = !0;
+    let mut z = 1;
+    while z <= PAYLOAD {
+        let r = s[z - 1];
+        s[z] = TABLES[0][(r & 0xFF) as usize] ^ (r >> 8);
+        z += 1;
+    }
+    s
+};
+
+/// The CRC-32C register `crc` advanced over `data`, eight bytes per step.
+fn crc32c_update(mut crc: u32, data: &[u8]) -> u32 {
+    let t = &TABLES;
+    let at = |k: usize, x: u32| t[k][(x & 0xFF) as usize];
+    let mut chunks = data.chunks_exact(8);
+    for c in &mut chunks {
+        let lo = u32::from_le_bytes([c[0], c[1], c[2], c[3]]) ^ crc;
+        let hi = u32::from_le_bytes([c[4], c[5], c[6], c[7]]);
+        crc = at(7, lo)
+            ^ at(6, lo >> 8)
+            ^ at(5, lo >> 16)
+            ^ at(4, lo >> 24)
+            ^ at(3, hi)
+            ^ at(2, hi >> 8)
+            ^ at(1, hi >> 16)
+            ^ at(0, hi >> 24);
+    }
+    for &b in chunks.remainder() {
+        crc = at(0, crc ^ u32::from(b)) ^ (crc >> 8);
+    }
+    crc
+}
+
+/// The CRC-32C of `data` (`tests.rs` checks it against the `crc` crate's `CRC_32_ISCSI` and the
+/// catalogue's check value).
+#[cfg(test)]
+fn crc32c(data: &[u8]) -> u32 {
+    !crc32c_update(!0, data)
+}
+
+/// Whether every byte of `bytes` is zero (eight at a time).
+fn all_zero(bytes: &[u8]) -> bool {
+    let mut chunks = bytes.chunks_exact(8);
+    let mut any = 0u32;
+    for c in &mut chunks {
+        any |= u32::from_ne_bytes([c[0], c[1], c[2], c[3]])
+            | u32::from_ne_bytes([c[4], c[5], c[6], c[7]]);
+    }
+    for &b in chunks.remainder() {
+        any |= u32::from(b);
+    }
+    any == 0
+}
+
+/// The checksum a block must hold: the CRC-32C of its first `SUM` bytes. Over these 8160 bits CRC-32C has
+/// Hamming distance 4 (Koopman: distance 6 only up to 5243 data bits), so a block that differs from a
+/// sealed one in 1 to 3 bits never passes, nor one that differs only within 32 consecutive bits (any 4
+/// consecutive bytes);
+/// other damage passes with probability 2⁻³² (docs/c-api.md, `tests.rs`). `None` if the length is beyond
+/// `PAYLOAD` or a byte before the encoding is not zero (no sealed block is so): the CRC is computed from
+/// `START` after those zeros. Not inlined: one copy serves `load` and `encode` (4 KB less flash, one call
+/// more per use).
+#[inline(never)]
+fn checksum(b: &Block) -> Option<u32> {
+    let (start, len) = placement(b)?;
+    let (lead, rest) = b.split_at_checked(start)?;
+    let pad = rest.get(len..PAYLOAD - start)?;
+    let data = rest.get(..SUM - start)?;
+    if !all_zero(lead) || !all_zero(pad) {
+        return None;
+    }
+    Some(!crc32c_update(*START.get(start)?, data))
+}
+
+/// Where the encoding starts and its length: the length is read from the block (`None` beyond
+/// `PAYLOAD`), the start is the last multiple of 4 that leaves room for it before `PAYLOAD` (an aligned
+/// start makes the copy in `encode` word by word); the 0 to 3 bytes between the encoding and the tag are
+/// zeros like those before it.
+fn placement(b: &Block) -> Option<(usize, usize)> {
+    let len = word(b, TAG / 4 + 1) as usize;
+    Some((PAYLOAD.checked_sub(len)? & !3, len))
+}
+
+/// The checksum the block holds (its last 4 bytes, little-endian).
+fn stored_sum(b: &Block) -> u32 {
+    let [.., x0, x1, x2, x3] = *b;
+    u32::from_le_bytes([x0, x1, x2, x3])
 }
 
 fn word(b: &Block, i: usize) -> u32 {
@@ -99,34 +223,62 @@ fn word(b: &Block, i: usize) -> u32 {
     }
 }
 
-/// The state a block holds, checked: `QUATPROP_NOT_INITIALIZED` without the tag, `QUATPROP_CORRUPTED_STATE`
-/// if the length, the checksum or the encoding is wrong. Nothing is decoded before the checksum matches.
+/// The state a block holds, checked: `QUATPROP_NOT_INITIALIZED` without the tag (`QUATPROP_CORRUPTED_STATE`
+/// for an older version's tag), `QUATPROP_CORRUPTED_STATE` if the length, the leading zeros, the checksum
+/// or the encoding is wrong. Nothing is decoded before the checksum matches.
 fn load(b: &Block) -> Result<Inner, quatprop_status_t> {
-    if word(b, 0) != MAGIC {
-        return Err(S::QUATPROP_NOT_INITIALIZED);
+    let tag = word(b, TAG / 4);
+    if tag != MAGIC {
+        return Err(if OLD_MAGICS.contains(&word(b, 0)) {
+            S::QUATPROP_CORRUPTED_STATE
+        } else {
+            S::QUATPROP_NOT_INITIALIZED
+        });
     }
-    let len = word(b, 1) as usize;
-    if len > PAYLOAD || word(b, 2) != checksum(b) {
+    if checksum(b) != Some(stored_sum(b)) {
         return Err(S::QUATPROP_CORRUPTED_STATE);
     }
+    let (start, len) = placement(b).ok_or(S::QUATPROP_CORRUPTED_STATE)?;
     let bytes = b
-        .get(HEADER..HEADER + len)
+        .get(start..start + len)
         .ok_or(S::QUATPROP_CORRUPTED_STATE)?;
     postcard::from_bytes(bytes).map_err(|_| S::QUATPROP_CORRUPTED_STATE)
 }
 
-/// `inner` as a block: tag, length, checksum, encoding, zeros.
+/// `inner` as a block: zeros, encoding, tag, length, checksum.
 fn encode(inner: &Inner) -> Result<Block, quatprop_status_t> {
+    const E: quatprop_status_t = S::QUATPROP_UNKNOWN_ERROR;
     let mut b: Block = [0; QUATPROP_STATE_SIZE];
-    let (head, payload) = b.split_at_mut(HEADER);
-    let len = postcard::to_slice(inner, payload)
-        .map_err(|_| S::QUATPROP_UNKNOWN_ERROR)?
-        .len();
-    head[0..4].copy_from_slice(&MAGIC.to_ne_bytes());
-    head[4..8].copy_from_slice(&(len as u32).to_ne_bytes());
-    let sum = checksum(&b);
-    b[8..12].copy_from_slice(&sum.to_ne_bytes());
+    let (payload, rest) = b.split_at_mut(PAYLOAD);
+    let len = postcard::to_slice(inner, payload).map_err(|_| E)?.len();
+    rest[..4].copy_from_slice(&MAGIC.to_ne_bytes());
+    rest[4..8].copy_from_slice(&(len as u32).to_ne_bytes());
+    let (start, _) = placement(&b).ok_or(E)?;
+    // The encoding moves to `start`, zeros before it (the explicit bounds: no panic path).
+    let payload = b.get_mut(..PAYLOAD).ok_or(E)?;
+    if len > payload.len() || start > payload.len() - len {
+        return Err(E);
+    }
+    payload.copy_within(..len, start);
+    payload.get_mut(..start.min(len)).ok_or(E)?.fill(0);
+    let sum = checksum(&b).ok_or(E)?;
+    b[SUM..].copy_from_slice(&sum.to_le_bytes());
     Ok(b)
+}
+
+/// The check ABI 3 had (tag "QPF3" in word 0, the length in word 1, the checksum in word 2, the encoding
+/// from byte 12): a word hash `h ← (h ⊕ w) · 16777619` over every other 32-bit word. Kept only for the tests,
+/// which count what it let through, and for the bench (feature `bench-hooks`), which times it beside the CRC.
+#[cfg(any(test, feature = "bench-hooks"))]
+fn checksum_abi3(b: &Block) -> u32 {
+    let mut h: u32 = 0x811C_9DC5;
+    for (i, w) in b.chunks_exact(4).enumerate() {
+        if i != 2 {
+            let word = u32::from_ne_bytes([w[0], w[1], w[2], w[3]]);
+            h = (h ^ word).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
 }
 
 /// Result of every call. Values are fixed (ABI); 1 to 16 mirror `quatprop::Error`.
@@ -183,8 +335,9 @@ pub enum quatprop_status_t {
     QUATPROP_NOT_CONFIGURED = 105,
     /// A numeric argument out of range (count scale not finite and positive).
     QUATPROP_BAD_ARGUMENT = 106,
-    /// The state's bytes changed since the library last wrote them (its checksum or its encoding does not
-    /// match: retained RAM after a reset, a stray write, a partial copy). Nothing was read from it.
+    /// The state's bytes changed since the library last wrote them (its CRC-32C or its encoding does not
+    /// match: retained RAM after a reset, a stray write, a partial copy), or an older version of the library
+    /// wrote them. Nothing was read from it.
     QUATPROP_CORRUPTED_STATE = 107,
 }
 
@@ -479,8 +632,8 @@ unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], quatprop_status
 /// `s`, if non-null and aligned, must point to a readable `quatprop_t`.
 unsafe fn block<'a>(s: *const quatprop_t) -> Result<&'a Block, quatprop_status_t> {
     check(s)?;
-    // SAFETY: non-null and aligned (checked); a `quatprop_t` is 512 readable bytes per the caller's
-    // contract, and any bytes are a valid `[u8; 512]`.
+    // SAFETY: non-null and aligned (checked); a `quatprop_t` is QUATPROP_STATE_SIZE readable bytes per the
+    // caller's contract, and any bytes are a valid `[u8; QUATPROP_STATE_SIZE]`.
     Ok(unsafe { &*s.cast::<Block>() })
 }
 
@@ -1312,8 +1465,9 @@ pub unsafe extern "C" fn quatprop_get_counters(
     }
 }
 
-/// The library's version, a static NUL-terminated string (e.g. "0.2.0"): compare it with what the
-/// firmware was built against, e.g. in a boot log. Never NULL.
+/// The library's version, a static NUL-terminated string (the crate's version, equal to the header's
+/// `QUATPROP_VERSION` when library and header match): compare it with what the firmware was built
+/// against, e.g. in a boot log. Never NULL.
 #[no_mangle]
 pub extern "C" fn quatprop_version() -> *const core::ffi::c_char {
     const VERSION: &core::ffi::CStr = match core::ffi::CStr::from_bytes_with_nul(
@@ -1365,6 +1519,30 @@ pub extern "C" fn quatprop_status_name(status: i32) -> *const core::ffi::c_char 
         _ => c"unknown status",
     };
     name.as_ptr()
+}
+
+/// Bench hook (feature `bench-hooks` only; not in the header): the checksum of the block behind `s` (0 for
+/// a NULL or misaligned `s`), so `ffi/ci` can time the state's check on its own.
+///
+/// # Safety
+/// `s` must be NULL or point to a readable `quatprop_t`.
+#[cfg(feature = "bench-hooks")]
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_bench_checksum(s: *const quatprop_t) -> u32 {
+    // SAFETY: forwarded contract.
+    unsafe { block(s) }.ok().and_then(checksum).unwrap_or(0)
+}
+
+/// Bench hook (feature `bench-hooks` only): ABI 3's word hash of the block behind `s`, timed beside
+/// `quatprop_bench_checksum` to show what the CRC costs more.
+///
+/// # Safety
+/// As `quatprop_bench_checksum`.
+#[cfg(feature = "bench-hooks")]
+#[no_mangle]
+pub unsafe extern "C" fn quatprop_bench_checksum_abi3(s: *const quatprop_t) -> u32 {
+    // SAFETY: forwarded contract.
+    unsafe { block(s) }.map_or(0, checksum_abi3)
 }
 
 /// Test hook of the link-time proof (feature `panic-selftest` only): a reachable panic.

@@ -47,6 +47,9 @@ impl From<Error> for Fail {
 pub type Refusal = (usize, Fail);
 
 /// The bias stage of the front end.
+// The estimator is most of the variant's size; boxing it is not an option here (no heap), and the state is
+// one block of fixed size whichever variant it holds.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub enum Bias {
     None,

@@ -1,5 +1,7 @@
-//! Host tests: the state's encoding fits its block, and any changed byte is caught before anything is
-//! decoded. (The header test is the crate `header/`.)
+//! Host tests: the state's encoding fits its block; any changed byte is caught before anything is decoded;
+//! the block's CRC-32C catches every error of up to 4 bits (all of them tried), every burst of up to 32 bits
+//! and every error within two bytes, and no random damage passes it. (The header test is the crate
+//! `header/`.)
 
 use super::*;
 use quatprop::frontend::{
@@ -71,13 +73,12 @@ fn a_state_round_trips_and_any_changed_byte_is_caught() {
         for flip in [0x01u8, 0x80, 0xff] {
             let mut c = b;
             c[i] ^= flip;
-            let r = load(&c);
-            let expected = if i < 4 {
+            let expected = if (TAG..TAG + 4).contains(&i) {
                 S::QUATPROP_NOT_INITIALIZED
             } else {
                 S::QUATPROP_CORRUPTED_STATE
             };
-            assert_eq!(r.err(), Some(expected), "byte {i} ^ {flip:#x}");
+            assert_eq!(load(&c).err(), Some(expected), "byte {i} ^ {flip:#x}");
             caught += 1;
         }
     }
@@ -119,3 +120,5 @@ fn the_default_drift_is_the_libraries() {
         BiasEstimator::<f32>::DEFAULT_DRIFT as f32
     );
 }
+
+mod check;

@@ -46,7 +46,7 @@ __all__ = [
     "SAMPLES",
 ]
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 SCHEMES = ("euler", "rk2", "rk3", "rk4", "rk5", "expmap", "magnus4", "cf4")
 """Integration schemes (the core's ``SchemeKind``)."""
