@@ -653,7 +653,7 @@ impl<T: Real> BiasEstimator<T> {
     /// A block finished: its means kept. Out of line: once per block, not per sample.
     #[inline(never)]
     fn close_block(&mut self) {
-        let j = (self.count / self.block) as usize - 1;
+        let j = ((self.count / self.block.max(1)) as usize).saturating_sub(1);
         let inv = T::ONE / count::<T>(self.block);
         self.in_block = 0;
         if let Some(slot) = self.blocks.get_mut(j) {
@@ -879,7 +879,10 @@ impl<T: Real> BiasEstimator<T> {
         let mut best: Option<(T, usize)> = None;
         for s in 0..BLOCKS {
             // Levels before and after the transition block `s`: sums and counts.
-            let (before, after) = (&self.blocks[..s], &self.blocks[s + 1..]);
+            let (before, after) = (
+                self.blocks.get(..s).unwrap_or(&[]),
+                self.blocks.get(s + 1..).unwrap_or(&[]),
+            );
             let level = |b: &[Vec3<T>]| {
                 let n = T::from_f64(b.len() as f64);
                 (
@@ -909,7 +912,7 @@ impl<T: Real> BiasEstimator<T> {
             }
         }
         let (_, s) = best?;
-        let after = &self.blocks[s + 1..];
+        let after = self.blocks.get(s + 1..).unwrap_or(&[]);
         if after.len() < 2 {
             return Some(None);
         }

@@ -118,43 +118,47 @@ fn basis(tau: f64) -> [f64; 3] {
     [1.0 / tau, FLICKER_FLOOR, tau / 3.0]
 }
 
-/// Solves the `n × n` system `a x = b` (`n ≤ 3`) by Gaussian elimination with partial pivoting; `None` if
-/// singular.
-fn solve(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize) -> Option<[f64; 3]> {
-    for col in 0..n {
-        let pivot = (col..n).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+/// Solves the 3 × 3 system `a x = b` by Gaussian elimination with partial pivoting; `None` if singular.
+fn solve(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    for col in 0..3 {
+        let mut pivot = col;
+        for row in col + 1..3 {
+            if a[row][col].abs() > a[pivot][col].abs() {
+                pivot = row;
+            }
+        }
         if !(a[pivot][col].abs() > 0.0) {
             return None;
         }
         a.swap(col, pivot);
         b.swap(col, pivot);
-        for row in col + 1..n {
+        for row in col + 1..3 {
             let f = a[row][col] / a[col][col];
-            for k in col..n {
+            for k in col..3 {
                 a[row][k] -= f * a[col][k];
             }
             b[row] -= f * b[col];
         }
     }
     let mut x = [0.0; 3];
-    for row in (0..n).rev() {
+    for row in (0..3).rev() {
         let mut s = b[row];
-        for k in row + 1..n {
+        for k in row + 1..3 {
             s -= a[row][k] * x[k];
         }
         x[row] = s / a[row][row];
     }
-    x.iter().take(n).all(|v| v.is_finite()).then_some(x)
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
-/// The inverse of the `n × n` matrix `a` (`n ≤ 3`), column by column.
-fn inverse(a: [[f64; 3]; 3], n: usize) -> Option<[[f64; 3]; 3]> {
+/// The inverse of the 3 × 3 matrix `a`, column by column.
+fn inverse(a: [[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
     let mut inv = [[0.0; 3]; 3];
-    for col in 0..n {
+    for col in 0..3 {
         let mut e = [0.0; 3];
         e[col] = 1.0;
-        let x = solve(a, e, n)?;
-        for row in 0..n {
+        let x = solve(a, e)?;
+        for row in 0..3 {
             inv[row][col] = x[row];
         }
     }
@@ -162,54 +166,65 @@ fn inverse(a: [[f64; 3]; 3], n: usize) -> Option<[[f64; 3]; 3]> {
 }
 
 /// A weighted least-squares fit on the terms of `mask`: coefficients (zero outside the mask), the
-/// weighted sum of squared residuals, and the covariance of the coefficients (in the mask's order).
+/// weighted sum of squared residuals, and the covariance of the coefficients (zero outside the mask).
 struct Solution {
     coefficients: [f64; 3],
     residual: f64,
     covariance: [[f64; 3]; 3],
-    terms: [usize; 3],
+    /// The terms fitted.
+    mask: u8,
+    /// How many.
     n: usize,
 }
 
 /// Rows: `(f(τ), y, weight)` with `weight = 1/var(y)`. Columns scaled to unit weighted norm first (the
-/// three functions differ by orders of magnitude).
+/// three functions differ by orders of magnitude); a term outside the mask is an identity row and column
+/// of the normal equations, held at zero.
 fn fit_subset(rows: &[([f64; 3], f64, f64)], mask: u8) -> Option<Solution> {
-    let mut terms = [0; 3];
-    let mut n = 0;
-    for j in 0..3 {
-        if mask & (1 << j) != 0 {
-            terms[n] = j;
-            n += 1;
-        }
-    }
+    let on = |j: usize| mask & (1 << j) != 0;
     let mut scale = [0.0; 3];
-    for (i, &j) in terms.iter().take(n).enumerate() {
-        let s: f64 = rows.iter().map(|(f, _, w)| w * f[j] * f[j]).sum();
-        scale[i] = if s > 0.0 {
-            1.0 / libm::sqrt(s)
-        } else {
-            return None;
-        };
+    for (j, sc) in scale.iter_mut().enumerate() {
+        if on(j) {
+            let s: f64 = rows.iter().map(|(f, _, w)| w * f[j] * f[j]).sum();
+            if !(s > 0.0) {
+                return None;
+            }
+            *sc = 1.0 / libm::sqrt(s);
+        }
     }
     let mut ata = [[0.0; 3]; 3];
     let mut atb = [0.0; 3];
     for (f, y, w) in rows {
-        for i in 0..n {
-            let fi = f[terms[i]] * scale[i];
+        for i in 0..3 {
+            let fi = f[i] * scale[i];
             atb[i] += w * fi * y;
-            for k in 0..n {
-                ata[i][k] += w * fi * f[terms[k]] * scale[k];
+            for k in 0..3 {
+                ata[i][k] += w * fi * f[k] * scale[k];
             }
         }
     }
-    let x = solve(ata, atb, n)?;
-    let inv = inverse(ata, n)?;
+    for j in 0..3 {
+        if !on(j) {
+            ata[j] = [0.0; 3];
+            for row in ata.iter_mut() {
+                row[j] = 0.0;
+            }
+            ata[j][j] = 1.0;
+            atb[j] = 0.0;
+        }
+    }
+    let x = solve(ata, atb)?;
+    let inv = inverse(ata)?;
     let mut coefficients = [0.0; 3];
     let mut covariance = [[0.0; 3]; 3];
-    for i in 0..n {
-        coefficients[terms[i]] = x[i] * scale[i];
-        for k in 0..n {
-            covariance[i][k] = inv[i][k] * scale[i] * scale[k];
+    for i in 0..3 {
+        if on(i) {
+            coefficients[i] = x[i] * scale[i];
+            for k in 0..3 {
+                if on(k) {
+                    covariance[i][k] = inv[i][k] * scale[i] * scale[k];
+                }
+            }
         }
     }
     let residual = rows
@@ -223,8 +238,8 @@ fn fit_subset(rows: &[([f64; 3], f64, f64)], mask: u8) -> Option<Solution> {
         coefficients,
         residual,
         covariance,
-        terms,
-        n,
+        mask,
+        n: (0..3).filter(|&j| on(j)).count(),
     })
 }
 
@@ -247,8 +262,8 @@ impl NoiseFit {
                 && p.variance.is_finite()
                 && p.differences >= 1.0
                 && p.differences.is_finite();
-            if ok && len < MAX_POINTS {
-                kept[len] = (p.tau, p.variance, p.differences);
+            if let (true, Some(slot)) = (ok, kept.get_mut(len)) {
+                *slot = (p.tau, p.variance, p.differences);
                 len += 1;
             }
         }
@@ -271,7 +286,7 @@ impl NoiseFit {
                 let m = m.max(floor);
                 *row = (basis(p.0), p.1, p.2 / (2.0 * m * m));
             }
-            let rows = &rows[..len];
+            let rows = rows.get(..len)?;
             best = (1..8_u8)
                 .filter_map(|mask| fit_subset(rows, mask))
                 .filter(|s| s.coefficients.iter().all(|&c| c >= 0.0))
@@ -293,7 +308,7 @@ impl NoiseFit {
             }
             rows
         };
-        let full = fit_subset(&rows_final[..len], 0b111);
+        let full = fit_subset(rows_final.get(..len)?, 0b111);
         let dof = len.saturating_sub(s.n).max(1) as f64;
         let misfit = s.residual / dof;
         let inflate = misfit.max(1.0);
@@ -303,9 +318,7 @@ impl NoiseFit {
         }; 3];
         for (j, term) in terms.iter_mut().enumerate() {
             term.coefficient = s.coefficients[j];
-            let own = (0..s.n)
-                .find(|&i| s.terms[i] == j)
-                .map(|i| s.covariance[i][i]);
+            let own = (s.mask & (1 << j) != 0).then(|| s.covariance[j][j]);
             let variance = own.or_else(|| full.as_ref().map(|f| f.covariance[j][j]));
             if let Some(v) = variance.filter(|v| *v >= 0.0) {
                 term.std_error = libm::sqrt(v * inflate);

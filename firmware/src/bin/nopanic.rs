@@ -5,8 +5,9 @@
 //! `quatprop_firmware::configs`. The panic handler is the `panic-never` crate's, which references a symbol
 //! that does not exist, so if any panic path is still reachable after optimization the link fails. The
 //! sensor front end (`CountScale`, `Calibration`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator` (with its
-//! accelerometer gate and temperature model), `MotionBias`, `SampleTiming`, `FixedPeriod`,
-//! `TickClock`) and the fixed-point propagator (`fixed::Q30Propagator`: `new`, `push`, `push_burst`,
+//! drift, noise model, accelerometer gate, temperature model and variance), `MotionBias`, `SampleTiming`,
+//! `FixedPeriod`, `TickClock`), the noise identification (`noise::AllanVariance` and `NoiseFit`) and the
+//! fixed-point propagator (`fixed::Q30Propagator`: `new`, `push`, `push_burst`,
 //! `restart_input`, the getters) are called once, with opaque inputs, in every image; `start` and the FIFO bursts
 //! (`push_burst` at a fixed period, `push_burst_timed` with sensor ticks) for every input model ×
 //! accumulator through the run-time `SchemeKind` × `StabilizerKind` (whose dispatch reaches every scheme's
@@ -49,6 +50,7 @@ use quatprop::frontend::{
 };
 use quatprop::input::coning::{ConingKind, TwoSample};
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::noise::{AllanVariance, NoiseFit};
 use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::{Stabilizer, StabilizerKind};
 use quatprop::{DeltaAngle, GyroSample, Propagator, Quat, Vec3};
@@ -213,11 +215,15 @@ fn front_end() {
         }
     }
     if let Ok(e) = BiasEstimator::<f32>::new(black_box(1.0), black_box(1.0e-3), black_box(0.05)) {
+        let noise = GyroNoise::new(black_box(1.0e-4), black_box(0.0));
         let e = e
-            .with_change(black_box(5.0e-4))
+            .with_drift(black_box(2.0e-5))
             .and_then(|e| e.with_accel_gate(black_box(0.5)))
-            .and_then(|e| e.with_temperature_model(black_box(0.5)));
-        if let Ok(mut e) = e.and_then(|e| e.with_initial(black_box(Vec3::new(0.0, 0.0, 0.01)))) {
+            .and_then(|e| e.with_temperature_model(black_box(0.5)))
+            .and_then(|e| noise.and_then(|n| e.with_noise(&n)));
+        if let Ok(mut e) =
+            e.and_then(|e| e.with_initial(black_box(Vec3::new(0.0, 0.0, 0.01)), black_box(1.0e-3)))
+        {
             let aux = Aux {
                 accel: black_box(Some(Vec3::new(0.0, 0.0, 9.81))),
                 temperature: black_box(Some(25.0)),
@@ -228,9 +234,29 @@ fn front_end() {
             }
             black_box((
                 e.bias(),
+                e.variance(),
                 e.is_learned(),
                 e.bias_at(black_box(30.0)),
                 e.temperature_slope(),
+            ));
+        }
+    }
+    if let Ok(mut avar) = AllanVariance::<f32, 16>::new(black_box(1.0e-3)) {
+        for _ in 0..black_box(3) {
+            let _ = black_box(avar.push(black_box(s.rate)));
+        }
+        for c in avar.clusters() {
+            black_box(c);
+        }
+        black_box(NoiseFit::pooled_from(&avar, black_box(0.0)));
+        black_box(NoiseFit::axis(&avar, black_box(1), black_box(0.0)));
+        if let Some(fit) = NoiseFit::pooled(&avar) {
+            let _ = black_box(GyroNoise::<f32>::from_fit(&fit));
+            black_box((
+                fit.white.value(),
+                fit.white.interval(black_box(2.0)),
+                fit.random_walk.is_identified(),
+                fit.variance(black_box(1.0)),
             ));
         }
     }
