@@ -28,11 +28,12 @@ fn bias_estimator_learns_still_bias_and_nothing_else() {
     let mut est = BiasEstimator::<f64>::new(1.0, 1.0e-3, gate)
         .unwrap()
         .with_drift(0.0)
+        .and_then(|e| e.with_rest_drift(0.0))
         .unwrap();
     let sample = |extra: Vec3<f64>, noise: &mut Noise| {
         GyroSample::new(bias + extra + Vec3::new(noise.next(), noise.next(), noise.next()) * sigma)
     };
-    // Still for 20 s, a constant bias (drift 0): the estimate's error is the noise averaged over the
+    // Still for 20 s, a constant bias (drift 0 at rest and unseen): the estimate's error is the noise averaged over the
     // still time, σ/√N.
     for _ in 0..20_000 {
         est.update(sample(Vec3::ZERO, &mut noise)).unwrap();
@@ -476,6 +477,9 @@ fn bad_parameters_are_refused() {
     assert_eq!(e.with_drift(f32::NAN), bad);
     assert_eq!(e.with_drift(f32::INFINITY), bad);
     assert!(e.with_drift(0.0).is_ok());
+    assert_eq!(e.with_rest_drift(-1.0), bad);
+    assert_eq!(e.with_rest_drift(f32::NAN), bad);
+    assert!(e.with_rest_drift(0.0).is_ok());
     assert_eq!(e.with_accel_gate(f32::INFINITY), bad);
     assert_eq!(e.with_temperature_model(-1.0), bad);
     assert_eq!(e.with_initial(Vec3::ZERO, 0.0), bad);

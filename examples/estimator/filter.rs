@@ -64,7 +64,7 @@
 
 use quatprop::covariance::Ud;
 use quatprop::error_state::{GyroNoise, Step};
-use quatprop::frontend::FixedBias;
+use quatprop::frontend::{Aux, BiasEstimator, FixedBias, SampleTiming};
 use quatprop::input::Hold;
 use quatprop::scheme::ExpMap;
 use quatprop::stabilize::FirstOrder;
@@ -108,6 +108,15 @@ pub struct Params {
     pub accel_tau: f64,
     /// Epochs per accelerometer update (≥ 1): the low-passed direction is correlated in time.
     pub update_every: u32,
+    /// The rest detector's window (s; 0: no rest updates): a [`BiasEstimator`] fed the raw gyro and the
+    /// accelerometer; each still window it takes is a measurement of all three bias components.
+    pub rest_window: f64,
+    /// The rest detector's gate (rad/s per axis, around its own bias estimate).
+    pub rest_gate: f64,
+    /// The gyro's group delay (s): how long after the motion a sample comes out of the sensor's filter.
+    /// The attitude reported is carried forward by it at the latest corrected rate
+    /// ([`SampleTiming::ahead`]); the filter itself runs on the samples as they come.
+    pub group_delay: f64,
 }
 
 impl Params {
@@ -134,6 +143,9 @@ impl Params {
             initial_bias: 0.01,
             accel_tau: 1.5,
             update_every: 10,
+            rest_window: 1.0,
+            rest_gate: 0.0524,
+            group_delay: 0.0,
         }
     }
 
@@ -156,6 +168,9 @@ impl Params {
             && pos(self.initial_bias)
             && nonneg(self.accel_tau)
             && self.update_every >= 1
+            && nonneg(self.rest_window)
+            && pos(self.rest_gate)
+            && nonneg(self.group_delay)
             && (self.accel_noise > 0.0 || self.accel_floor > 0.0)
     }
 }
@@ -234,6 +249,11 @@ pub struct Counts {
     pub rejected: u64,
     /// Updates taken after the gate's timeout.
     pub forced: u64,
+    /// Bias updates from still windows (the rest detector's).
+    pub rests: u64,
+    /// Still windows that disagreed with the filter's bias beyond its uncertainty: the bias restarted
+    /// from them.
+    pub restarts: u64,
 }
 
 /// The error-state Kalman filter ([module documentation](self)). `Copy`, allocation-free.
@@ -271,6 +291,12 @@ pub struct Filter<T: Real> {
     update_every: u32,
     /// Epochs since the last accelerometer update (taken or not).
     since_update: u32,
+    /// The rest detector, and the number of its still windows already used.
+    rest: Option<BiasEstimator<T>>,
+    rest_used: u32,
+    /// The gyro's group delay, and the latest corrected rate (rad/s) to carry the attitude forward with.
+    timing: SampleTiming<T>,
+    rate: Vec3<T>,
 }
 
 impl<T: Real> Filter<T> {
@@ -335,6 +361,18 @@ impl<T: Real> Filter<T> {
             },
             update_every: params.update_every,
             since_update: 0,
+            rest: if params.rest_window > 0.0 {
+                Some(BiasEstimator::new(
+                    params.rest_window,
+                    params.sample_period,
+                    conv(params.rest_gate)?,
+                )?)
+            } else {
+                None
+            },
+            rest_used: 0,
+            timing: SampleTiming::instant().with_group_delay(conv(params.group_delay)?)?,
+            rate: Vec3::ZERO,
         };
         if filter.dt > T::ZERO && filter.accel_var > T::ZERO {
             Ok(filter)
@@ -358,9 +396,17 @@ impl<T: Real> Filter<T> {
             return self.start(gyro, accel);
         }
         let mut next = *self;
-        next.prop
-            .push(next.bias.apply(GyroSample::new(gyro)), next.dt)?;
+        let corrected = next.bias.apply(GyroSample::new(gyro));
+        next.prop.push(corrected, next.dt)?;
+        next.rate = corrected.rate;
         next.pending += 1;
+        if let Some(rest) = next.rest.as_mut() {
+            let aux = Aux {
+                accel: Some(accel),
+                temperature: None,
+            };
+            rest.update_with(GyroSample::new(gyro), aux)?;
+        }
         if let Some(lp) = next.lowpass.as_mut() {
             lp.push(next.prop.attitude().rotate(accel));
         }
@@ -424,6 +470,14 @@ impl<T: Real> Filter<T> {
         self.counts.predicts += 1;
         self.pending = 0;
         self.q_start = end;
+        // A still window the rest detector took since the last epoch: a measurement of the bias.
+        if let Some((n, b, v)) = self.rest.and_then(|r| r.last_window()) {
+            if n != self.rest_used {
+                self.rest_used = n;
+                self.rest_update(b, v)?;
+            }
+        }
+        let end = self.prop.attitude();
 
         self.since_update += 1;
         if self.since_update < self.update_every {
@@ -495,17 +549,7 @@ impl<T: Real> Filter<T> {
                 x[i] += gain.gain[i] * innovation;
             }
         }
-        let dtheta = Vec3::new(x[0], x[1], x[2]);
-        let dbias = Vec3::new(x[3], x[4], x[5]);
-        self.prop.rotate_body(dtheta)?;
-        if let Some(lp) = self.lowpass.as_mut() {
-            // q ← q ⊗ exp(δθ) is exp(R(q)δθ) ⊗ q: the reference-frame correction moves the past samples
-            // held in the low-pass as it moves the attitude they were rotated with.
-            lp.rotate(Quat::from_rotation_vector(end.rotate(dtheta)));
-        }
-        self.bias = self.bias.correct(dbias)?;
-        self.prop.correct_bias(dbias)?;
-        self.q_start = self.prop.attitude();
+        self.fold(x)?;
         self.rejected_run = 0;
         self.counts.updates += 1;
         if forced {
@@ -514,15 +558,78 @@ impl<T: Real> Filter<T> {
         Ok(Pushed::Updated { forced })
     }
 
+    /// Folds the error state `x = (δθ, δb)` into the nominal state and resets it: the attitude rotated,
+    /// the bias (and the samples the input model keeps) corrected.
+    fn fold(&mut self, x: [T; 6]) -> Result<(), FilterError> {
+        let dtheta = Vec3::new(x[0], x[1], x[2]);
+        let dbias = Vec3::new(x[3], x[4], x[5]);
+        let before = self.prop.attitude();
+        self.prop.rotate_body(dtheta)?;
+        if let Some(lp) = self.lowpass.as_mut() {
+            // q ← q ⊗ exp(δθ) is exp(R(q)δθ) ⊗ q: the reference-frame correction moves the past samples
+            // held in the low-pass as it moves the attitude they were rotated with.
+            lp.rotate(Quat::from_rotation_vector(before.rotate(dtheta)));
+        }
+        self.bias = self.bias.correct(dbias)?;
+        self.prop.correct_bias(dbias)?;
+        self.q_start = self.prop.attitude();
+        Ok(())
+    }
+
+    /// A still window's measurement of the bias (its mean `b`, rad/s, and that mean's variance `v` per
+    /// axis): three scalar rows `δb_i = b_i − b̂_i`, then the correction. A window that disagrees with the
+    /// filter beyond its own uncertainty (`Σ z_i²/(P_bb,ii + v_i)` above the χ²₃ bound of 10⁻⁴, 21.1) is a
+    /// fault of the filter's bias, not noise: the bias restarts from the window (`b̂ ← b`, its variance the
+    /// window's, no correlation with the attitude), counted in [`Counts::restarts`].
+    fn rest_update(&mut self, b: Vec3<T>, v: Vec3<T>) -> Result<(), FilterError> {
+        let z = b - self.bias.bias();
+        let p = self.cov.matrix();
+        let nis =
+            z.x * z.x / (p[3][3] + v.x) + z.y * z.y / (p[4][4] + v.y) + z.z * z.z / (p[5][5] + v.z);
+        if !(nis <= T::from_f64(RESTART_CHI2)) {
+            let mut restarted = p;
+            for i in 0..6 {
+                for j in 0..6 {
+                    if (i < 3) != (j < 3) || (i >= 3 && i != j) {
+                        restarted[i][j] = T::ZERO;
+                    }
+                }
+            }
+            restarted[3][3] = v.x;
+            restarted[4][4] = v.y;
+            restarted[5][5] = v.z;
+            self.cov = Ud::from_matrix(&restarted)?;
+            self.bias = self.bias.correct(z)?;
+            self.prop.correct_bias(z)?;
+            self.q_start = self.prop.attitude();
+            self.counts.restarts += 1;
+            return Ok(());
+        }
+        let mut x = [T::ZERO; 6];
+        for (i, (zi, ri)) in [(z.x, v.x), (z.y, v.y), (z.z, v.z)].into_iter().enumerate() {
+            let mut h = [T::ZERO; 6];
+            h[3 + i] = T::ONE;
+            let gain = self.cov.update(&h, ri)?;
+            let innovation = zi - x[3 + i];
+            for k in 0..6 {
+                x[k] += gain.gain[k] * innovation;
+            }
+        }
+        self.fold(x)?;
+        self.counts.rests += 1;
+        Ok(())
+    }
+
     fn reject(&mut self) {
         self.rejected_run = self.rejected_run.saturating_add(1);
         self.counts.rejected += 1;
     }
 
-    /// The attitude estimate `q̂` (body to reference, z up; heading the filter's own).
+    /// The attitude estimate `q̂` (body to reference, z up; heading the filter's own), now: the filter's
+    /// attitude carried forward by the gyro's group delay ([`Params::group_delay`]) at the latest rate.
     #[must_use]
     pub fn attitude(&self) -> Quat<T> {
-        self.prop.attitude()
+        self.timing.ahead(self.prop.attitude(), self.rate)
     }
 
     /// The gyro bias estimate `b̂` (rad/s, body axes).
@@ -566,6 +673,10 @@ impl<T: Real> Filter<T> {
         self.started
     }
 }
+
+/// The χ²₃ quantile of 1 − 10⁻⁴: a still window's disagreement with the filter's bias beyond it restarts
+/// the bias.
+const RESTART_CHI2: f64 = 21.11;
 
 /// `R(q)ᵀ e_z`: the reference's up in body axes.
 fn up_in_body<T: Real>(q: Quat<T>) -> Vec3<T> {

@@ -42,7 +42,7 @@ fn describe(p: &Params) -> String {
     format!(
         "sample_period = {}\npredict_every = {}\ngyro_arw = {}\ngyro_bias_walk = {}\ngyro_scale = {}\naccel_noise = {}\n\
          accel_floor = {}\ngravity = {}\ndynamic = {}\nrotating = {}\ngate = {}\ngate_timeout = {}\ninitial_tilt = {}\n\
-         initial_bias = {}\naccel_tau = {}\nupdate_every = {}\n",
+         initial_bias = {}\naccel_tau = {}\nupdate_every = {}\nrest_window = {}\nrest_gate = {}\ngroup_delay = {}\n",
         p.sample_period,
         p.predict_every,
         p.gyro_arw,
@@ -58,7 +58,10 @@ fn describe(p: &Params) -> String {
         p.initial_tilt,
         p.initial_bias,
         p.accel_tau,
-        p.update_every
+        p.update_every,
+        p.rest_window,
+        p.rest_gate,
+        p.group_delay
     )
 }
 
@@ -97,6 +100,9 @@ fn set(p: &mut Params, assignment: &str) -> Result<(), String> {
                 .parse()
                 .map_err(|_| format!("--set {assignment}: not a whole number"))?
         }
+        "rest_window" => p.rest_window = v,
+        "rest_gate" => p.rest_gate = v,
+        "group_delay" => p.group_delay = v,
         other => return Err(format!("--set: unknown parameter {other}")),
     }
     Ok(())

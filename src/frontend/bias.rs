@@ -131,8 +131,10 @@ pub struct BiasEstimator<T> {
     /// The sample period (s).
     period: T,
     gate: T,
-    /// The bias's random walk density (rad/s/√s).
+    /// The bias's random walk density (rad/s/√s) while it is not seen: the knob.
     drift: T,
+    /// Its density between still windows that agree (rad/s/√s): the sensor's wander at rest.
+    rest_drift: T,
     /// Acceleration gate (per axis, the unit of the accelerations given), if used.
     accel_gate: Option<T>,
     /// The estimate and its variance per axis ((rad/s)²), as of the last update.
@@ -166,6 +168,8 @@ pub struct BiasEstimator<T> {
     temperature_count: u32,
     /// Still windows learned so far (saturating).
     learned: u32,
+    /// The last of them, as a measurement of the bias.
+    taken: Option<Measurement<T>>,
     /// What the last window showed, for the steps at rest.
     last: Last<T>,
     /// The bias(T) line, if asked for.
@@ -291,6 +295,9 @@ impl<T: Real> BiasEstimator<T> {
     /// held out on BROAD (docs/bias.md).
     pub const DEFAULT_DRIFT: f64 = 2.0e-5;
 
+    /// The default `rest_drift` (rad/s/√s): how fast the bias wanders while the body stays still.
+    pub const DEFAULT_REST_DRIFT: f64 = 2.0e-5;
+
     /// Windows of `window_seconds` (s; e.g. 1 s) of samples taken every `sample_period` (s), stillness gate
     /// `gate` (rad/s), drift [`BiasEstimator::DEFAULT_DRIFT`]. The window holds `round(window_seconds /
     /// sample_period)` samples: change the rate and the window stays as long.
@@ -339,6 +346,7 @@ impl<T: Real> BiasEstimator<T> {
             period,
             gate,
             drift: T::from_f64(Self::DEFAULT_DRIFT),
+            rest_drift: T::from_f64(Self::DEFAULT_REST_DRIFT),
             accel_gate: None,
             bias: Vec3::ZERO,
             variance: Vec3::ZERO,
@@ -360,6 +368,7 @@ impl<T: Real> BiasEstimator<T> {
             temperature_sum: T::ZERO,
             temperature_count: 0,
             learned: 0,
+            taken: None,
             last: Last::Moving,
             thermal: None,
         })
@@ -382,10 +391,29 @@ impl<T: Real> BiasEstimator<T> {
         Ok(self)
     }
 
+    /// Sets how fast the bias wanders while the body stays still (rad/s/√s): the Kalman filter's process
+    /// noise between two still windows that agree with the estimate. It sets how closely the estimate
+    /// follows a drift at rest and how much noise it keeps (the noise of a window's mean against the
+    /// drift over a window); it does not let a slow turn in (time spent in motion or in windows that
+    /// disagree grows the uncertainty by `drift`). A sensor's rate random walk and bias instability
+    /// ([`GyroNoise::bias_walk`](crate::noise::GyroNoise::bias_walk)) are its physical value; a changing
+    /// temperature adds to it.
+    ///
+    /// # Errors
+    /// [`Error::InvalidEstimator`] if `rest_drift` is negative, NaN or infinite.
+    pub fn with_rest_drift(mut self, rest_drift: T) -> Result<Self, Error> {
+        if !(rest_drift >= T::ZERO && rest_drift <= T::MAX) {
+            return Err(Error::InvalidEstimator);
+        }
+        self.rest_drift = rest_drift;
+        Ok(self)
+    }
+
     /// Takes the scatter of block means at rest from the sensor's white noise instead of learning it:
     /// `N²/τ_block` per axis, `N` = `noise.arw()` (rad/√s; a datasheet's, or identified from a rest
     /// recording by [`NoiseFit`](crate::noise::NoiseFit), which also sees what the sensor's own filter
-    /// does to short clusters if fitted from τ ≥ a block).
+    /// does to short clusters if fitted from τ ≥ a block), and the rest drift from its bias walk
+    /// ([`BiasEstimator::with_rest_drift`]).
     ///
     /// # Errors
     /// [`Error::InvalidEstimator`] if the white noise is zero (nothing would ever be flat).
@@ -397,6 +425,7 @@ impl<T: Real> BiasEstimator<T> {
         }
         self.rest_scatter = Vec3::new(v, v, v);
         self.rest_dof = T::MAX;
+        self.rest_drift = noise.bias_walk();
         Ok(self)
     }
 
@@ -529,6 +558,16 @@ impl<T: Real> BiasEstimator<T> {
         let th = self.thermal?;
         let spans = th.weight >= T::TWO && th.slope != Vec3::ZERO;
         spans.then_some(th.slope)
+    }
+
+    /// The last still window the estimate took, as a measurement of the bias on its own: the number of
+    /// windows taken so far (saturating; it tells a new one from the last), the window's mean (rad/s;
+    /// a confirmed step's two windows together) and the variance of that mean per axis ((rad/s)²). An
+    /// estimator that also learns the bias elsewhere (a filter's accelerometer updates) takes each new one
+    /// once as an independent measurement (the windows' noises are independent; the estimate is not).
+    #[must_use]
+    pub fn last_window(&self) -> Option<(u32, Vec3<T>, Vec3<T>)> {
+        self.taken.map(|m| (self.learned, m.bias, m.variance))
     }
 
     /// `true` once at least one still window has been learned (or an initial bias given).
@@ -709,18 +748,25 @@ impl<T: Real> BiasEstimator<T> {
 
     /// `drift²` times `samples` periods.
     fn growth(&self, samples: u32) -> T {
-        self.drift * self.drift * self.period * count::<T>(samples)
+        self.growth_at(self.drift, samples)
+    }
+
+    /// `q²` times `samples` periods.
+    fn growth_at(&self, q: T, samples: u32) -> T {
+        q * q * self.period * count::<T>(samples)
     }
 
     /// Every learned quantity finite (the window sums are reset after each window).
     fn is_finite(&self) -> bool {
         let finite = |t: Option<T>| t.is_none_or(Real::is_finite);
-        let last = match self.last {
-            Last::Candidate(c) | Last::Step(Some(c)) => {
-                c.bias.is_finite() && c.variance.is_finite() && finite(c.temperature)
-            }
+        let measured = |m: &Measurement<T>| {
+            m.bias.is_finite() && m.variance.is_finite() && finite(m.temperature)
+        };
+        let last = match &self.last {
+            Last::Candidate(c) | Last::Step(Some(c)) => measured(c),
             _ => true,
         };
+        let last = last && self.taken.as_ref().is_none_or(measured);
         let thermal = self.thermal.is_none_or(|th| {
             th.weight.is_finite()
                 && th.sum_t.is_finite()
@@ -742,10 +788,15 @@ impl<T: Real> BiasEstimator<T> {
     /// The window's verdict: motion, a step, or a still window that updates the estimate, starts a step
     /// or confirms one.
     fn judge_window(&mut self) {
-        // The estimate's uncertainty grows with the time since it was last updated.
-        let grown = self.growth(self.since);
+        // The estimate's uncertainty grows with the time since it was last judged: by `drift` for the time
+        // it was not seen; for a still window that agrees with it, by `rest_drift` over that window. Both
+        // are known before the verdict: `unseen` now, the window's share added if it is taken.
+        let elapsed = self.since;
         self.since = 0;
-        self.variance = map(self.variance, |v| v + grown);
+        let unseen = self.growth(elapsed.saturating_sub(self.window));
+        let window_seen = self.growth_at(self.rest_drift, elapsed.min(self.window));
+        let window_unseen = self.growth(elapsed.min(self.window));
+        self.variance = map(self.variance, |v| v + unseen);
         let temperature = (self.temperature_count > 0)
             .then(|| self.temperature_sum * (T::ONE / count::<T>(self.temperature_count)));
         let used = temperature.map_or(self.bias, |t| self.bias_at(t));
@@ -791,6 +842,7 @@ impl<T: Real> BiasEstimator<T> {
             temperature,
         };
         if !(flat_gyro && flat_accel) {
+            self.variance = map(self.variance, |v| v + window_unseen);
             self.last = if flat_accel && matches!(self.last, Last::AtEstimate) {
                 match self.step_in_window(used) {
                     Some(level) => Last::Step(level),
@@ -802,6 +854,7 @@ impl<T: Real> BiasEstimator<T> {
             return;
         }
         if !(m.bias.is_finite() && m.temperature.is_none_or(Real::is_finite)) {
+            self.variance = map(self.variance, |v| v + window_unseen);
             self.last = Last::Moving;
             return; // temperatures whose sum overflowed: nothing learned from this window
         }
@@ -821,11 +874,14 @@ impl<T: Real> BiasEstimator<T> {
             return;
         }
         let innovation = m.bias - self.bias_at_or(temperature);
-        if !disagrees(innovation, self.variance + m.variance) {
+        let predicted = map(self.variance, |v| v + window_seen);
+        if !disagrees(innovation, predicted + m.variance) {
+            self.variance = predicted;
             self.update_estimate(&m, innovation);
             self.last = Last::AtEstimate;
             return;
         }
+        self.variance = map(self.variance, |v| v + window_unseen);
         self.last = match self.last {
             Last::AtEstimate | Last::Step(None) => Last::Candidate(m),
             Last::Step(Some(c)) | Last::Candidate(c) => {
@@ -937,6 +993,7 @@ impl<T: Real> BiasEstimator<T> {
         });
         self.bias += zip(gain, innovation, |k, v| k * v);
         self.variance = zip(gain, self.variance, |k, p| (T::ONE - k) * p);
+        self.taken = Some(*m);
         if let (Some(t), true) = (m.temperature, self.thermal.is_some()) {
             let tb = self.bias_temperature.unwrap_or(t);
             let k = (gain.x + gain.y + gain.z) * T::from_f64(1.0 / 3.0);
@@ -962,6 +1019,11 @@ impl<T: Real> BiasEstimator<T> {
                 // The weight of m is c's share of the variance.
                 self.bias = c.bias + zip(w, m.bias - c.bias, |k, d| k * d);
                 self.variance = zip(w, c.variance, |k, v| (T::ONE - k) * v);
+                self.taken = Some(Measurement {
+                    bias: self.bias,
+                    variance: self.variance,
+                    temperature: m.temperature,
+                });
                 self.bias_temperature = match (c.temperature, m.temperature) {
                     (Some(a), Some(b)) => Some((a + b) * T::HALF),
                     (a, b) => b.or(a),
@@ -972,6 +1034,7 @@ impl<T: Real> BiasEstimator<T> {
                 self.bias = m.bias;
                 self.variance = m.variance;
                 self.bias_temperature = m.temperature;
+                self.taken = Some(*m);
             }
         }
         self.learned = self.learned.saturating_add(1);
