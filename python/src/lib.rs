@@ -22,8 +22,8 @@ use quatprop::frontend::{
     MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::ConingKind;
-use quatprop::noise::GyroNoise;
 use quatprop::input::{History, InputModel};
+use quatprop::noise::GyroNoise;
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Stabilizer, StabilizerKind};
 use quatprop::{
@@ -354,8 +354,8 @@ impl<T: Real> Session<T> {
                             "BiasEstimator needs a sample period: give the stream dt= or BiasEstimator(period=...)",
                         )
                     })?;
-                let mut est =
-                    BiasEstimator::new(e.window, period, T::from_f64(e.gate)).map_err(config_error)?;
+                let mut est = BiasEstimator::new(e.window, period, T::from_f64(e.gate))
+                    .map_err(config_error)?;
                 if let Some(d) = e.drift {
                     est = est.with_drift(T::from_f64(d)).map_err(config_error)?;
                 }

@@ -75,8 +75,36 @@ def test_mask_keeps_the_state_and_carries_the_interval():
         (dict(gyr=spin(5), ticks=np.arange(5), tick_hz=1e3, tick_bits=33), ValueError, "InvalidClock"),
         (dict(gyr=spin(5), dt=1e-3, input="delta_angles", bias=[0, 0, 0]), ValueError, "delta angles"),
         (dict(gyr=spin(5), dt=1e-3, alignment="XYZ"), ValueError, "unknown axis remap"),
-        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(0, 0.1)), ValueError, "window"),
-        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(10, -0.1)), ValueError, "InvalidEstimator"),
+        # The estimator's window is in seconds: none, under one sample (0.4 ms at 1 kHz), 2^31 samples.
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(0.0, 0.1)), ValueError, "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(4e-4, 0.1)), ValueError, "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(2.2e6, 0.1)), ValueError, "InvalidEstimator"),
+        # An integer sample count of the 0.3 API is refused, not taken for 1000 seconds.
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1000, 0.1)), ValueError, "1000 * dt"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, -0.1)), ValueError, "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, drift=-1e-5)), ValueError,
+         "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, drift=float("inf"))), ValueError,
+         "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, initial=[0, 0, 0])), ValueError,
+         "needs initial_sigma"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, initial_sigma=0.01)), ValueError,
+         "needs initial"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, initial=[0, 0, 0], initial_sigma=0.0)),
+         ValueError, "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, initial=[0, 0], initial_sigma=0.1)),
+         ValueError, "[bx, by, bz]"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, noise_density=0.0)), ValueError,
+         "InvalidEstimator"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, noise_density=-1e-3)), ValueError,
+         "InvalidNoise"),
+        (dict(gyr=spin(5), dt=1e-3, bias=quatprop.BiasEstimator(1.0, 0.1, period=0.0)), ValueError,
+         "InvalidEstimator"),
+        # With timestamps or ticks the estimator needs its own period (a tick is not a sample).
+        (dict(gyr=spin(5), t=np.arange(5) * 1e-3, bias=quatprop.BiasEstimator(1.0, 0.1)), ValueError,
+         "sample period"),
+        (dict(gyr=spin(5), ticks=np.arange(5) * 1000, tick_hz=1e6, bias=quatprop.BiasEstimator(1.0, 0.1)),
+         ValueError, "needs period="),
     ],
 )
 def test_bad_arguments_raise_clear_errors(kwargs, error, words):
@@ -171,13 +199,70 @@ def test_alignment_matrix_must_be_a_rotation():
 def test_bias_estimator_learns_a_still_bias():
     b = np.array([0.0078125, -0.015625, 0.00390625])  # binary fractions: window sums are exact
     gyr = np.tile(b, (3000, 1))
-    est = quatprop.BiasEstimator(window=1000, gate=0.05)
+    est = quatprop.BiasEstimator(window=1.0, gate=0.05)  # 1 s: 1000 samples at 1 kHz
     q = quatprop.integrate(gyr, dt=1e-3, bias=est, precision="f64")
     drift = q[999] - q[0]
     assert np.abs(drift).max() > 1e-3  # the first window integrates the bias
     np.testing.assert_array_equal(q[-1], q[1003])  # once learned (and out of the history), nothing moves
-    q_known = quatprop.integrate(gyr, dt=1e-3, bias=quatprop.BiasEstimator(1000, 0.05, initial=b), precision="f64")
+    s = quatprop.Stream(dt=1e-3, bias=est, precision="f64")
+    s.update(gyr[:999])
+    np.testing.assert_array_equal(s.bias, [0.0, 0.0, 0.0])  # nothing before the window closes
+    s.update(gyr[999:1000])
+    np.testing.assert_array_equal(s.bias, b)  # the first still window, exactly
+    s.update(gyr[1000:])
+    np.testing.assert_array_equal(s.bias, b)  # the next windows agree: a Kalman update by zero
+    # A known bias (within its sigma): nothing is ever integrated.
+    known = quatprop.BiasEstimator(1.0, 0.05, initial=b, initial_sigma=1e-3)
+    q_known = quatprop.integrate(gyr, dt=1e-3, bias=known, precision="f64")
     np.testing.assert_array_equal(q_known[-1], [1.0, 0.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("dt", [1e-3, 2.5e-3, 1 / 285.0])
+def test_the_estimators_window_is_in_seconds(dt):
+    """The same BiasEstimator(window=1.0) at 1 kHz, 400 Hz and 285 Hz: learned after round(1 s / dt) still
+    samples (1000, 400, 285), not one sample before; with timestamps, from its own period."""
+    b = np.array([0.0078125, -0.015625, 0.00390625])
+    n = round(1.0 / dt)
+    est = quatprop.BiasEstimator(window=1.0, gate=0.05)
+    s = quatprop.Stream(dt=dt, bias=est, precision="f64")
+    s.update(np.tile(b, (n - 1, 1)))
+    np.testing.assert_array_equal(s.bias, [0.0, 0.0, 0.0])
+    s.update(np.tile(b, (1, 1)))
+    np.testing.assert_array_equal(s.bias, b)
+    timed = quatprop.Stream(timestamps=True, bias=quatprop.BiasEstimator(window=1.0, gate=0.05, period=dt),
+                            precision="f64")
+    timed.update(np.tile(b, (n - 1, 1)), t=np.arange(n - 1) * dt)
+    np.testing.assert_array_equal(timed.bias, [0.0, 0.0, 0.0])
+    timed.update(np.tile(b, (1, 1)), t=[(n - 1) * dt])
+    np.testing.assert_array_equal(timed.bias, b)
+
+
+def test_the_namespace_is_the_public_api():
+    """``__all__`` names exactly what the package offers: every name exists, ``from quatprop import *``
+    gives exactly those, and nothing else public is in the namespace (no ``np``, ``List``, ``dataclass``,
+    ``Optional`` …), so a star import without ``__all__`` would give the same."""
+    names = quatprop.__all__
+    assert len(set(names)) == len(names)
+    assert all(hasattr(quatprop, n) for n in names)
+    star = {}
+    exec("from quatprop import *", star)
+    assert set(star) - {"__builtins__"} == set(names)
+    public = {n for n in dir(quatprop) if not n.startswith("_")}
+    assert public == set(names), public ^ set(names)
+    for leaked in ("np", "List", "Optional", "Sequence", "Tuple", "Union", "dataclass", "annotations"):
+        assert not hasattr(quatprop, leaked), leaked
+    # The public classes and functions are quatprop's own (pickling finds them there).
+    assert all(getattr(quatprop, n).__module__ == "quatprop" for n in names if callable(getattr(quatprop, n)))
+    assert quatprop.__version__.count(".") == 2
+
+
+def test_public_objects_pickle():
+    import pickle
+
+    est = quatprop.BiasEstimator(1.0, 0.05, drift=1e-4, initial=(0.0, 0.1, 0.0), initial_sigma=0.01)
+    assert pickle.loads(pickle.dumps(est)) == est
+    e = pickle.loads(pickle.dumps(quatprop.RefusedSample(3, "NonFiniteRate", "NaN")))
+    assert (e.index, e.kind, e.reason) == (3, "NonFiniteRate", "NaN")
 
 
 def test_timestamps_backwards_or_repeated_are_refused():

@@ -18,26 +18,32 @@ def _inputs():
     raw = np.fromfile(DATA / "inputs.f64", dtype="<f8")
     gyr, t, gyr_bad, t_bad = np.split(raw, np.cumsum([3 * N, N, 3 * N]))
     ticks = np.fromfile(DATA / "ticks.u32", dtype="<u4")
+    rest = np.fromfile(DATA / "rest.f64", dtype="<f8").reshape(N, 3)
     return {
         "gyr": (gyr.reshape(N, 3), t),
         "deltas": (gyr.reshape(N, 3) * MANIFEST["period"], t),
         "bad": (gyr_bad.reshape(N, 3), t_bad),
+        "rest": (rest, None),
     }, ticks
 
 
 INPUTS, TICKS = _inputs()
 
 
-def _call(case):
+def _options(case):
     opts = dict(case["options"])
-    gyr, t = INPUTS[case["inputs"]]
+    _, t = INPUTS[case["inputs"]]
     if opts.pop("t", False):
         opts["t"] = t
     if opts.pop("ticks", False):
         opts["ticks"] = TICKS
     if isinstance(opts.get("bias"), dict):
         opts["bias"] = quatprop.BiasEstimator(**opts["bias"])
-    return quatprop.integrate(gyr, **opts)
+    return opts
+
+
+def _call(case):
+    return quatprop.integrate(INPUTS[case["inputs"]][0], **_options(case))
 
 
 @pytest.mark.parametrize("case", MANIFEST["cases"], ids=[c["name"] for c in MANIFEST["cases"]])
@@ -59,6 +65,15 @@ def test_bit_identical_to_rust(case):
     np.testing.assert_array_equal(q.view(bits), want.view(bits))
 
 
+@pytest.mark.parametrize("case", [c for c in MANIFEST["cases"] if "bias" in c], ids=lambda c: c["name"])
+def test_the_estimators_final_bias_is_the_rust_one(case):
+    """The bias estimator's estimate after the stream (``Stream.bias``), bit for bit the core's."""
+    opts = _options(case)
+    stream = quatprop.Stream(opts.pop("dt"), **opts)
+    stream.update(INPUTS[case["inputs"]][0])
+    assert stream.bias.tolist() == case["bias"]
+
+
 def test_the_reference_covers_every_path():
     """The manifest exercises both precisions, the three time bases, refusals and the front end."""
     opts = [c["options"] for c in MANIFEST["cases"]]
@@ -66,6 +81,10 @@ def test_the_reference_covers_every_path():
     assert any("dt" in o for o in opts) and any("t" in o for o in opts) and any("ticks" in o for o in opts)
     assert any(o.get("on_refused") == "mask" for o in opts)
     assert any("alignment" in o for o in opts) and any("bias" in o for o in opts)
+    # The estimator's window in seconds and every parameter a stream without accelerations takes.
+    estimators = [o["bias"] for o in opts if isinstance(o.get("bias"), dict)]
+    assert all(0 < e["window"] < 1 for e in estimators)
+    assert {"drift", "noise_density", "initial", "initial_sigma"} <= {k for e in estimators for k in e}
     refused = {tuple(c["refused"]) for c in MANIFEST["cases"] if c["refused"]}
     assert refused, "some case must refuse samples"
 

@@ -56,11 +56,14 @@ def test_any_chunking_is_one_call_bit_for_bit(case, precision, size, aux):
     made, given, stamps = CASES[case]
     gyr = coning()
     gyr[[300, 301, 1500]] = np.nan  # refused and skipped: the clock and the estimator carry over
-    estimator = quatprop.BiasEstimator(window=100, gate=0.05, memory=8)
-    if aux:  # the accelerometer gate and the temperature model: their state is kept between calls too
+    # Windows of 0.1 s (100 samples, blocks of 12); the timestamped stream needs the period.
+    estimator = quatprop.BiasEstimator(window=0.1, gate=0.05, period=1e-3)
+    if aux:  # the accelerometer gate, the temperature model, a drift, a noise density and a start: their
+        # state is kept between calls too
         stamps = {**stamps, **companions()}
-        estimator = quatprop.BiasEstimator(window=100, gate=0.05, memory=8, accel_gate=0.5,
-                                           temperature_span=0.1, change=1e-3)
+        estimator = quatprop.BiasEstimator(window=0.1, gate=0.05, period=1e-3, accel_gate=0.5,
+                                           temperature_span=0.1, drift=1e-3, noise_density=1e-3 * 1e-3**0.5,
+                                           initial=[-0.019, -0.011, 0.006], initial_sigma=2e-3)
     options = dict(
         precision=precision,
         alignment="PyNxPz",
@@ -82,7 +85,7 @@ def test_any_chunking_is_one_call_bit_for_bit(case, precision, size, aux):
 def test_raise_leaves_the_stream_ready_for_the_rest_of_the_rows():
     gyr = coning()
     gyr[1777] = np.inf
-    options = dict(dt=1e-3, bias=quatprop.BiasEstimator(window=100, gate=0.05), precision="f64")
+    options = dict(dt=1e-3, bias=quatprop.BiasEstimator(window=0.1, gate=0.05), precision="f64")
     whole, _ = quatprop.integrate(gyr, on_refused="mask", **options)
     s = quatprop.Stream(**options)
     first = s.update(gyr[:1700])
@@ -217,28 +220,49 @@ def test_refused_delta_angles_report_the_angle_they_took():
     np.testing.assert_array_equal(rates.lost_angle, [0.0, 0.0, 0.0])  # rates: no angle is lost, time carries
 
 
-def test_a_bias_step_at_rest_is_followed_and_readable():
-    """(+0.3, 0, -0.2) °/s at rest 20.37 s in, f32 at 1 kHz with 0.1 °/s noise: within 0.05 °/s 2.63 s
-    after the step (the Rust test's figure, through the binding), and the estimate is the new bias."""
+# The sensor's white noise: 0.1 °/s per sample at 1 kHz is 0.1 °/s / √(1 kHz) (rad/√s).
+NOISE_01DPS_1KHZ = 0.1 * np.pi / 180 * 1e-3**0.5
+LOCKOUT = (
+    "core: the scatter at rest is started by the first still window alone (7 degrees of freedom); this "
+    "noise draw's first window has 0.17x the true scatter on z, so most later still windows fail the "
+    "flatness test against it (4.27x) and the step is never followed (about 3 % of still windows refused "
+    "over 40 draws, 69 % for this one; none with noise_density given)"
+)
+
+
+@pytest.mark.parametrize(
+    "noise_density",
+    [NOISE_01DPS_1KHZ, pytest.param(None, marks=pytest.mark.xfail(strict=True, reason=LOCKOUT))],
+    ids=["noise_given", "scatter_learned"],
+)
+def test_a_bias_step_at_rest_is_followed_and_readable(noise_density):
+    """(+0.3, 0, -0.2) °/s at rest 20.37 s in, f32 at 1 kHz with 0.1 °/s noise, windows of 1 s: the window
+    from 20 to 21 s holds two flat levels, the next confirms the new one, so the estimate is within
+    0.05 °/s from 22 s on: 1.63 s after the step (the Rust test's figure, through the binding). The step
+    back at 30 s, on a window's boundary, is confirmed by the two windows after it: followed at 32 s."""
     rng = np.random.default_rng(3)
     deg = np.pi / 180
-    n = 30_000
+    n = 40_000
     t = (np.arange(n) + 1) * 1e-3
-    bias = np.where((t < 20.37)[:, None], [0.6, -0.4, 0.25], [0.9, -0.4, 0.05]) * deg
+    stepped = (t >= 20.37) & (t <= 30.0)
+    bias = np.where(stepped[:, None], [0.9, -0.4, 0.05], [0.6, -0.4, 0.25]) * deg
     gyr = (bias + 0.1 * deg * rng.standard_normal((n, 3))).astype(np.float32)
-    s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=1000, gate=3 * deg))
+    s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=1.0, gate=3 * deg, noise_density=noise_density))
     est = np.empty((n, 3))
     for k in range(n):  # one sample per call: the estimate after each
         s.update(gyr[k : k + 1])
         est[k] = s.bias
     off = np.linalg.norm(est - bias, axis=1) > 0.05 * deg
-    last_off = np.flatnonzero(off)[-1]
-    assert 2.62 < t[last_off + 1] - 20.37 < 2.64
-    np.testing.assert_allclose(s.bias, [0.9 * deg, -0.4 * deg, 0.05 * deg], atol=0.01 * deg)
+    assert np.flatnonzero(off[:20_000])[-1] + 1 == 999  # the first window sets it at 1 s
+    after_step = np.flatnonzero(off[:30_000])[-1] + 1  # the first sample from which it holds
+    assert t[after_step] == pytest.approx(22.0) and t[after_step] - 20.37 == pytest.approx(1.63)
+    assert np.flatnonzero(off)[-1] + 1 == 31_999  # back at 32 s, 2 s after the step back
+    assert not off[after_step:30_000].any() and not off[32_000:].any()
+    np.testing.assert_allclose(s.bias, [0.6 * deg, -0.4 * deg, 0.25 * deg], atol=0.01 * deg)
 
 
 def test_companions_are_checked_before_anything_is_taken():
-    s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=10, gate=0.05, accel_gate=0.5))
+    s = quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=0.01, gate=0.05, accel_gate=0.5))
     gyr = np.zeros((20, 3))
     acc = np.tile([0.0, 0.0, 9.81], (20, 1))
     s.update(gyr[:5], acc=acc[:5])
@@ -253,8 +277,9 @@ def test_companions_are_checked_before_anything_is_taken():
     plain = quatprop.Stream(dt=1e-3)
     with pytest.raises(ValueError, match="bias estimator"):
         plain.update(gyr, temperature=np.full(20, 25.0))
-    with pytest.raises(ValueError, match="2\\*\\*31"):
-        quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=10, gate=0.05, memory=2**31))
+    with pytest.raises(ValueError, match="InvalidEstimator"):  # 2^31 samples: too long a window
+        quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=2.0**31 * 1e-3, gate=0.05))
+    quatprop.Stream(dt=1e-3, bias=quatprop.BiasEstimator(window=(2.0**31 - 1) * 1e-3, gate=0.05))  # the longest
 
 
 def test_interval_means_are_integrated_exactly_as_increments():
@@ -298,7 +323,7 @@ def test_timing_is_kept_between_calls(size):
     gyr[[300, 1500]] = np.nan
     t = np.arange(N) * 1e-3 + 3.0
     options = dict(precision="f32", input="delta_angles", coning="three_sample", sample="interval_mean",
-                   group_delay=2.5e-3, bias=quatprop.BiasEstimator(window=100, gate=0.05),
+                   group_delay=2.5e-3, bias=quatprop.BiasEstimator(window=0.1, gate=0.05, period=1e-3),
                    on_refused="mask")
     whole, _ = quatprop.integrate(gyr, t=t, **options)
     q, _ = chunked(quatprop.Stream(timestamps=True, **options), gyr, size, t=t)
@@ -336,11 +361,12 @@ def test_the_motion_bias_state_is_kept_between_calls(size):
     gyr[[300, 1500]] = np.nan
     acc = companions()["acc"]
     options = dict(precision="f32", alignment="PyNxPz", on_refused="mask",
-                   bias=quatprop.BiasEstimator(window=100, gate=0.05, motion=True))
+                   bias=quatprop.BiasEstimator(window=0.1, gate=0.05, motion=True))
     whole, _ = quatprop.integrate(gyr, dt=1e-3, acc=acc, **options)
     q, _ = chunked(quatprop.Stream(dt=1e-3, **options), gyr, size, acc=acc)
     assert q.tobytes() == whole.tobytes()
     plain, _ = quatprop.integrate(gyr, dt=1e-3, **options)  # without acc: the rest estimate alone
     assert plain.tobytes() != whole.tobytes()
     with pytest.raises(ValueError, match="fixed period"):
-        quatprop.Stream(timestamps=True, bias=quatprop.BiasEstimator(window=10, gate=0.05, motion=True))
+        quatprop.Stream(timestamps=True, bias=quatprop.BiasEstimator(window=0.01, gate=0.05, motion=True,
+                                                                     period=1e-3))

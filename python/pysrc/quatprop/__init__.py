@@ -17,12 +17,11 @@ The integration runs in Rust, in the core library's own loop over the whole buff
 released; no Python code runs per sample.
 """
 
-from __future__ import annotations
+# Imported under private names: the package's namespace is its public API (`__all__`) and nothing else.
+from dataclasses import dataclass as _dataclass
+from typing import List as _List, Optional as _Optional, Sequence as _Sequence, Tuple as _Tuple
 
-from dataclasses import dataclass
-from typing import List, Optional, Sequence, Tuple, Union
-
-import numpy as np
+import numpy as _np
 
 from . import _native
 
@@ -83,30 +82,44 @@ class RefusedSample(ValueError):
         return (RefusedSample, (self.index, self.kind, self.reason))
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class BiasEstimator:
     """Learns the gyro bias while the body is still, follows it as it drifts and when it steps at rest —
     without taking a slow turn or the end of a motion for a bias (the core's ``frontend::BiasEstimator``).
 
-    Samples are taken in windows of ``window`` seconds, each cut into 8 blocks. A window is *still* when
-    every sample (minus the estimate) stays within ``gate`` rad/s on every axis (with ``accel_gate``, also
-    every acceleration within that gate of the window's first) and its block means scatter no more than
-    at rest (the scatter at rest is learned from the still windows, or given by ``noise_density``); the
-    accelerations' block means, when ``acc`` is given, must be flat too. Each still window is a
-    measurement of a bias that walks with density ``drift`` (rad/s/√s): a Kalman filter. A still window
-    more than five standard deviations off the estimate is taken for a slow turn, not a bias, until the
-    drift says the bias could have moved that far: ``drift`` is the one knob between following a changing
-    bias and keeping a slow turn (docs/bias.md plots it against Fusion's and VQF's). A step at rest (two
-    flat levels in one window, the first at the estimate) is followed within two windows.
+    Samples are taken in windows of ``window`` **seconds** (the window holds ``round(window / period)``
+    samples: change the rate and the window stays as long), each cut into 8 blocks. A window is *still*
+    when every sample (minus the estimate) stays within ``gate`` rad/s on every axis and none is saturated
+    (with ``accel_gate``, also every acceleration within that gate of the window's first), and it is flat:
+    its block means scatter no more than at rest (the scatter at rest is learned from the still windows,
+    or given by ``noise_density``); when ``acc`` is given, the accelerations' block means must be flat
+    too. Each still window is a measurement of a bias that walks with density ``drift``: a Kalman filter.
+    A still window more than five standard deviations off the estimate is taken for a slow turn, not a
+    bias, until the drift says the bias could have moved that far: ``drift`` is the one knob between
+    following a changing bias and keeping a slow turn (docs/bias.md plots it against Fusion's and VQF's).
+    A step at rest (two flat levels in one window, the first at the estimate, confirmed by the next still
+    window) is followed within two windows.
 
     Attributes:
-        window: the window's length (s), e.g. 1.0.
+        window: the window's length (s), e.g. 1.0. An integer above 100 is refused as a likely sample
+            count (the 0.3 API's unit): give ``samples * dt``, or a float for a window that long.
         gate: stillness gate (rad/s), e.g. 3 °/s = 0.0524 rad/s.
-        drift: the bias's random walk density (rad/s/√s); None: the core's ``DEFAULT_DRIFT`` (1e-4).
-        noise_density: the gyro's white noise (rad/√s = rad/s/√Hz, a datasheet's or identified with
-            :func:`allan`); None: the scatter at rest is learned from the still windows.
-        initial: a known bias to start from (rad/s, body axes), with ``initial_sigma``.
-        initial_sigma: the standard deviation of ``initial`` (rad/s): how far the bias may have moved.
+        drift: how fast the bias may wander, as the density of a random walk (rad/s/√s): after ``t``
+            seconds without a still window that agrees, the bias may be about ``drift·√t`` away, and a
+            still window ``5·drift·√t`` off the estimate (beyond the estimate's and the window's own
+            uncertainty) is believed; one farther off is kept out as a turn. None: the core's
+            ``DEFAULT_DRIFT``, 2e-5 rad/s/√s (a window 0.044 °/s off is believed after a minute without
+            an agreeing one, 0.34 °/s after an hour). Larger follows a warming sensor sooner and keeps a
+            slow turn for less long; 0 takes the bias for a constant (changed by a step at rest only).
+            The gyro's own rate random walk is the least it can be.
+        noise_density: the gyro's white noise (rad/√s = rad/s/√Hz, a datasheet's or identified from a
+            rest recording); None: the scatter at rest is learned from the still windows (the first
+            still window is then taken as it is).
+        initial: a known bias to start from (rad/s, body axes, e.g. stored at the last shutdown), with
+            ``initial_sigma``.
+        initial_sigma: the standard deviation of ``initial`` (rad/s): how far the bias may have moved
+            since. A first still window within five of it refines ``initial``; one farther off is
+            followed as a step only (the next still window must confirm it).
         accel_gate: acceleration gate per axis, in the unit of the ``acc`` given to :meth:`Stream.update`
             (e.g. 0.5 m/s²); None: no gate (the accelerations' flatness is tested whenever ``acc`` is given).
         temperature_span: the temperature spread (standard deviation, the unit of ``temperature``) from
@@ -116,32 +129,38 @@ class BiasEstimator:
             restarts at zero whenever a still window is learned). Needs ``acc`` (in the gyro's axes,
             m/s² or any unit) and a fixed period (``dt=``). The accelerometer informs the bias only; the
             attitude is the gyro's. :attr:`Stream.bias` is then the sum of both: what is subtracted.
-        period: the sample period (s); None: the stream's ``dt`` (or its tick period). Needed with
-            timestamps.
+        period: the sample period (s), from which the window's samples are counted; None: the stream's
+            ``dt``. Needed with timestamps and with ticks (``tick_hz`` is the counter's rate, not the
+            sample rate).
     """
 
     window: float
     gate: float
-    drift: Optional[float] = None
-    noise_density: Optional[float] = None
-    initial: Optional[Sequence[float]] = None
-    initial_sigma: Optional[float] = None
-    accel_gate: Optional[float] = None
-    temperature_span: Optional[float] = None
+    drift: _Optional[float] = None
+    noise_density: _Optional[float] = None
+    initial: _Optional[_Sequence[float]] = None
+    initial_sigma: _Optional[float] = None
+    accel_gate: _Optional[float] = None
+    temperature_span: _Optional[float] = None
     motion: bool = False
-    period: Optional[float] = None
+    period: _Optional[float] = None
 
     def _native(self):
         initial = None
         if self.initial is not None:
-            ia = np.asarray(self.initial, dtype=np.float64)
+            ia = _np.asarray(self.initial, dtype=_np.float64)
             if ia.shape != (3,):
                 raise ValueError("BiasEstimator.initial must be [bx, by, bz]")
             if self.initial_sigma is None:
                 raise ValueError("BiasEstimator.initial needs initial_sigma (rad/s)")
             initial = ([float(c) for c in ia], float(self.initial_sigma))
-        if isinstance(self.window, (int, np.integer)) and self.window > 100:
-            raise ValueError(f"BiasEstimator.window is in seconds now, got {self.window!r} (samples?)")
+        elif self.initial_sigma is not None:
+            raise ValueError("BiasEstimator.initial_sigma needs initial (rad/s)")
+        if isinstance(self.window, (int, _np.integer)) and not isinstance(self.window, bool) and self.window > 100:
+            raise ValueError(
+                f"BiasEstimator.window is in seconds, got the integer {self.window!r}: a sample count? "
+                f"give window={self.window} * dt (or a float for a window that many seconds long)"
+            )
 
         def opt(v):
             return None if v is None else float(v)
@@ -151,22 +170,22 @@ class BiasEstimator:
                               opt(self.temperature_span), bool(self.motion))
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class _EstimatorArgs:
     """What the native layer reads (by attribute) from a :class:`BiasEstimator`."""
 
     window: float
     gate: float
-    period: Optional[float]
-    drift: Optional[float]
-    noise: Optional[float]
-    initial: Optional[tuple]
-    accel_gate: Optional[float]
-    span: Optional[float]
+    period: _Optional[float]
+    drift: _Optional[float]
+    noise: _Optional[float]
+    initial: _Optional[tuple]
+    accel_gate: _Optional[float]
+    span: _Optional[float]
     motion: bool
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class CountScale:
     """The scale of a 16-bit gyro (the core's ``frontend::CountScale``): raw counts → rad/s, and a count at
     a rail (-32768 or 32767) on any axis marks the sample saturated (counted in :attr:`Stream.saturated`).
@@ -177,8 +196,8 @@ class CountScale:
     stream's precision; each rate is that times the count, bit for bit the Rust core and the C API.
     """
 
-    full_scale_dps: Optional[float] = None
-    sensitivity: Optional[float] = None
+    full_scale_dps: _Optional[float] = None
+    sensitivity: _Optional[float] = None
 
     def _native(self):
         if (self.full_scale_dps is None) == (self.sensitivity is None):
@@ -188,10 +207,10 @@ class CountScale:
         return (False, float(self.sensitivity))
 
 
-_DTYPES = {"f32": np.float32, "f64": np.float64}
+_DTYPES = {"f32": _np.float32, "f64": _np.float64}
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class Calibration:
     """A gyro's own calibration, in the sensor's axes (the core's ``frontend::Calibration``):
     ``ω = M · (s ⊙ (r − o))`` for a reading ``r`` (rad/s), before the mounting (``alignment``).
@@ -208,14 +227,14 @@ class Calibration:
     singular or has a condition number ``‖A‖∞‖A⁻¹‖∞`` above 100.
     """
 
-    offset: Sequence[float] = (0.0, 0.0, 0.0)
-    sensitivity: Sequence[float] = (1.0, 1.0, 1.0)
-    misalignment: Sequence[Sequence[float]] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    offset: _Sequence[float] = (0.0, 0.0, 0.0)
+    sensitivity: _Sequence[float] = (1.0, 1.0, 1.0)
+    misalignment: _Sequence[_Sequence[float]] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 
     def _native(self):
-        o = np.asarray(self.offset, dtype=np.float64)
-        s = np.asarray(self.sensitivity, dtype=np.float64)
-        m = np.asarray(self.misalignment, dtype=np.float64)
+        o = _np.asarray(self.offset, dtype=_np.float64)
+        s = _np.asarray(self.sensitivity, dtype=_np.float64)
+        m = _np.asarray(self.misalignment, dtype=_np.float64)
         if o.shape != (3,) or s.shape != (3,) or m.shape != (3, 3):
             raise ValueError(
                 f"Calibration: offset and sensitivity must have 3 values and misalignment 3x3, got "
@@ -224,22 +243,22 @@ class Calibration:
         return ([float(c) for c in o], [float(c) for c in s], [[float(e) for e in row] for row in m])
 
 
-def calibrate(gyr, calibration: Calibration, precision: Optional[str] = None) -> np.ndarray:
+def calibrate(gyr, calibration: Calibration, precision: _Optional[str] = None) -> _np.ndarray:
     """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates, in the dtype of ``precision``
     (``None``: float32 for float32 readings, else float64)."""
     if not isinstance(calibration, Calibration):
         raise TypeError(f"calibration must be a quatprop.Calibration, got {type(calibration).__name__}")
     if precision is None:
-        precision = "f32" if np.asarray(gyr).dtype == np.float32 else "f64"
+        precision = "f32" if _np.asarray(gyr).dtype == _np.float32 else "f64"
     precision = _choice("precision", precision, tuple(_DTYPES))
     rows = _array("gyr", gyr, _DTYPES[precision], 2, 3)
     fn = _native.calibrate_f32 if precision == "f32" else _native.calibrate_f64
     return fn(rows, calibration._native())
 
 
-def _array(name: str, value, dtype, ndim: int, last: Optional[int] = None) -> np.ndarray:
+def _array(name: str, value, dtype, ndim: int, last: _Optional[int] = None) -> _np.ndarray:
     try:
-        a = np.asarray(value)
+        a = _np.asarray(value)
     except Exception as e:  # pragma: no cover - numpy's own message is clear
         raise TypeError(f"{name}: cannot be converted to an array ({e})") from None
     if a.dtype.kind not in "fiu":
@@ -247,22 +266,22 @@ def _array(name: str, value, dtype, ndim: int, last: Optional[int] = None) -> np
     if a.ndim != ndim or (last is not None and a.shape[-1] != last):
         want = "(N,)" if ndim == 1 else f"(N, {last})"
         raise ValueError(f"{name} must have shape {want}, got {a.shape}")
-    return np.ascontiguousarray(a, dtype=dtype)
+    return _np.ascontiguousarray(a, dtype=dtype)
 
 
-def _counts(value) -> np.ndarray:
+def _counts(value) -> _np.ndarray:
     """(N, 3) raw gyro counts as int16 (integers in -32768 .. 32767)."""
-    a = np.asarray(value)
+    a = _np.asarray(value)
     if a.dtype.kind not in "iu":
         raise TypeError(f"a stream with count_scale takes integer counts, got dtype {a.dtype}")
     if a.ndim != 2 or a.shape[-1] != 3:
         raise ValueError(f"counts must have shape (N, 3), got {a.shape}")
     if a.size and (a.min() < -32768 or a.max() > 32767):
         raise ValueError("counts must be in -32768 .. 32767 (16-bit)")
-    return np.ascontiguousarray(a, dtype=np.int16)
+    return _np.ascontiguousarray(a, dtype=_np.int16)
 
 
-def _stabilizer(stabilizer: str) -> Tuple[str, int]:
+def _stabilizer(stabilizer: str) -> _Tuple[str, int]:
     if not isinstance(stabilizer, str):
         raise TypeError(f"stabilizer must be a string, got {type(stabilizer).__name__}")
     if stabilizer.startswith("every:"):
@@ -278,7 +297,7 @@ def _stabilizer(stabilizer: str) -> Tuple[str, int]:
     return stabilizer, 0
 
 
-def _choice(name: str, value: str, choices: Sequence[str]) -> str:
+def _choice(name: str, value: str, choices: _Sequence[str]) -> str:
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, got {type(value).__name__}")
     if value not in choices:
@@ -349,25 +368,25 @@ class Stream:
 
     def __init__(
         self,
-        dt: Optional[float] = None,
+        dt: _Optional[float] = None,
         *,
         timestamps: bool = False,
-        tick_hz: Optional[float] = None,
+        tick_hz: _Optional[float] = None,
         tick_bits: int = 32,
         scheme: str = "expmap",
         stabilizer: str = "first_order",
         input: str = "history",
         coning: str = "two_sample",
         accumulator: str = "plain",
-        precision: Optional[str] = None,
+        precision: _Optional[str] = None,
         q0=None,
         alignment=None,
         bias=None,
-        calibration: Optional[Calibration] = None,
+        calibration: _Optional[Calibration] = None,
         on_refused: str = "raise",
         sample: str = "instant",
         group_delay: float = 0.0,
-        count_scale: Optional[CountScale] = None,
+        count_scale: _Optional[CountScale] = None,
     ) -> None:
         self._precision = None if precision is None else _choice("precision", precision, tuple(_DTYPES))
         if count_scale is not None and not isinstance(count_scale, CountScale):
@@ -380,7 +399,7 @@ class Stream:
                 'sample="interval_mean" rates are integrated as angle increments: give input="delta_angles"'
             )
         group_delay = float(group_delay)
-        if not (np.isfinite(group_delay) and group_delay >= 0.0):
+        if not (_np.isfinite(group_delay) and group_delay >= 0.0):
             raise ValueError(f"group_delay must be a finite number of seconds >= 0, got {group_delay!r}")
         if group_delay > 0.0 and input == "delta_angles" and not interval_mean:
             raise ValueError('group_delay needs rates: not with raw delta angles (use sample="interval_mean")')
@@ -395,24 +414,24 @@ class Stream:
         accumulator = _choice("accumulator", accumulator, ("plain", "kahan"))
         self._mask = _choice("on_refused", on_refused, ("raise", "mask")) == "mask"
 
-        if not isinstance(timestamps, (bool, np.bool_)):
+        if not isinstance(timestamps, (bool, _np.bool_)):
             raise TypeError(f"timestamps must be True or False, got {type(timestamps).__name__}")
         given = [n for n, v in (("dt", dt is not None), ("timestamps", bool(timestamps)), ("tick_hz", tick_hz is not None)) if v]
         if len(given) != 1:
             raise ValueError(f"give exactly one time base: dt, timestamps=True or tick_hz (got {given or 'none'})")
         period = None
         if dt is not None:
-            if isinstance(dt, (bool, np.bool_)) or not isinstance(dt, (int, float, np.integer, np.floating)):
+            if isinstance(dt, (bool, _np.bool_)) or not isinstance(dt, (int, float, _np.integer, _np.floating)):
                 raise TypeError(f"dt must be a number (s), got {type(dt).__name__}; per-sample times go in t")
             period = float(dt)
         self._time = "dt" if dt is not None else ("t" if timestamps else "ticks")
-        if isinstance(tick_bits, bool) or not isinstance(tick_bits, (int, np.integer)) or not 0 <= tick_bits < 2**32:
+        if isinstance(tick_bits, bool) or not isinstance(tick_bits, (int, _np.integer)) or not 0 <= tick_bits < 2**32:
             raise ValueError(f"tick_bits must be the counter width in bits (1 to 32), got {tick_bits!r}")
 
         if q0 is None:
             q0v = [1.0, 0.0, 0.0, 0.0]
         else:
-            q0a = np.asarray(q0, dtype=np.float64)
+            q0a = _np.asarray(q0, dtype=_np.float64)
             if q0a.shape != (4,):
                 raise ValueError(f"q0 must be [w, x, y, z], got shape {q0a.shape}")
             q0v = [float(c) for c in q0a]
@@ -425,7 +444,7 @@ class Stream:
                     raise ValueError(f"unknown axis remap {alignment!r}; e.g. 'PyNxPz' (see AXIS_REMAPS)")
                 remap = alignment
             else:
-                m = np.asarray(alignment, dtype=np.float64)
+                m = _np.asarray(alignment, dtype=_np.float64)
                 if m.shape != (3, 3):
                     raise ValueError(f"alignment matrix must be 3x3, got shape {m.shape}")
                 matrix = [[float(e) for e in row] for row in m]
@@ -436,9 +455,13 @@ class Stream:
             if not rates_in:
                 raise ValueError("bias (rad/s) does not apply to delta angles")
             if isinstance(bias, BiasEstimator):
+                if tick_hz is not None and bias.period is None:
+                    # tick_hz is the counter's rate (e.g. 1 MHz), not the sample rate: a window in seconds
+                    # needs the sample period.
+                    raise ValueError("a BiasEstimator on a tick_hz stream needs period= (the sample period, s)")
                 estimator = bias._native()
             else:
-                ba = np.asarray(bias, dtype=np.float64)
+                ba = _np.asarray(bias, dtype=_np.float64)
                 if ba.shape != (3,):
                     raise ValueError(f"bias must be [bx, by, bz] (rad/s) or a BiasEstimator, got shape {ba.shape}")
                 fixed_bias = [float(c) for c in ba]
@@ -507,11 +530,11 @@ class Stream:
                 nothing of the call is taken).
         """
         if self._precision is None:
-            self._decide("f32" if np.asarray(gyr).dtype == np.float32 else "f64")
+            self._decide("f32" if _np.asarray(gyr).dtype == _np.float32 else "f64")
         counts = None
         if self._counts:
             counts = _counts(gyr)
-            gyr = np.empty((0, 3), dtype=_DTYPES[self._precision])
+            gyr = _np.empty((0, 3), dtype=_DTYPES[self._precision])
             n = counts.shape[0]
         else:
             gyr = _array("gyr", gyr, _DTYPES[self._precision], 2, 3)
@@ -523,18 +546,18 @@ class Stream:
                     "ticks": "ticks (the stream was made with tick_hz)"}[self._time]
             raise ValueError(f"this stream takes {want}")
         if t is not None:
-            t_arr = _array("t", t, np.float64, 1)
+            t_arr = _array("t", t, _np.float64, 1)
             if t_arr.shape[0] != n:
                 raise ValueError(f"t has {t_arr.shape[0]} timestamps for {n} samples")
         if ticks is not None:
-            a = np.asarray(ticks)
+            a = _np.asarray(ticks)
             if a.dtype.kind not in "iu":
                 raise TypeError(f"ticks must be an integer array, got dtype {a.dtype}")
             if a.ndim != 1 or a.shape[0] != n:
                 raise ValueError(f"ticks must have shape ({n},), got {a.shape}")
             if a.size and (a.min() < 0 or a.max() > 2**32 - 1):
                 raise ValueError("ticks must be in 0 .. 2**32-1 (counter values)")
-            tick_arr = np.ascontiguousarray(a, dtype=np.uint32)
+            tick_arr = _np.ascontiguousarray(a, dtype=_np.uint32)
         dtype = _DTYPES[self._precision]
         acc_arr = None if acc is None else _array("acc", acc, dtype, 2, 3)
         temp_arr = None if temperature is None else _array("temperature", temperature, dtype, 1)
@@ -547,15 +570,19 @@ class Stream:
         return q
 
     @property
-    def attitude(self) -> np.ndarray:
+    def attitude(self) -> _np.ndarray:
         """The attitude ``[w, x, y, z]`` after the last accepted sample (float64 copy of the state)."""
-        return np.array(self._native.attitude())
+        return _np.array(self._native.attitude())
 
     @property
-    def bias(self) -> Optional[np.ndarray]:
-        """The bias subtracted now (rad/s, body axes): the estimator's estimate, the fixed bias, or None."""
+    def bias(self) -> _Optional[_np.ndarray]:
+        """The bias subtracted from the next sample (rad/s, body axes): the fixed bias; or the estimator's
+        estimate (zero before its first still window or ``initial``) plus, with ``motion=True``, the
+        residual learned in motion — both are subtracted (each rounded to the precision on its own); None
+        without a bias. With ``temperature_span`` the estimate is the bias at the learned windows' mean
+        temperature: a sample's is moved along the fitted bias(T) line to its temperature."""
         b = self._native.bias()
-        return None if b is None else np.array(b)
+        return None if b is None else _np.array(b)
 
     @property
     def steps(self) -> int:
@@ -568,14 +595,14 @@ class Stream:
         return self._native.counts()[1]
 
     @property
-    def lost_angle(self) -> np.ndarray:
+    def lost_angle(self) -> _np.ndarray:
         """The sum of the refused delta angles ``[x, y, z]`` (rad, body axes): the rotation that refused
         increments took with them (``input="delta_angles"``; a refused rate sample loses no time, its
         interval goes into the next one, but a refused increment's angle is not integrated; with
         ``sample="interval_mean"`` the increment is the rate times its interval, not counted when the
         interval itself was refused, e.g. a timestamp going back). NaN or infinite increments are not
         counted: their angle is unknown."""
-        return np.array(self._native.lost_angle())
+        return _np.array(self._native.lost_angle())
 
     @property
     def saturated(self) -> int:
@@ -584,7 +611,7 @@ class Stream:
 
     def set_attitude(self, q) -> None:
         """Replaces the attitude (normalized); the input model's samples, the clock and the counters stay."""
-        qa = np.asarray(q, dtype=np.float64)
+        qa = _np.asarray(q, dtype=_np.float64)
         if qa.shape != (4,):
             raise ValueError(f"q must be [w, x, y, z], got shape {qa.shape}")
         self._decide("f64")
@@ -614,8 +641,8 @@ class Stream:
         self._native.reset()
 
 
-def _vector3(v, name: str) -> List[float]:
-    a = np.asarray(v, dtype=np.float64)
+def _vector3(v, name: str) -> _List[float]:
+    a = _np.asarray(v, dtype=_np.float64)
     if a.shape != (3,):
         raise ValueError(f"{name} must be [x, y, z], got shape {a.shape}")
     return [float(c) for c in a]
@@ -627,28 +654,28 @@ if Stream.__doc__:  # None under python -OO
 
 def integrate(
     gyr,
-    dt: Optional[float] = None,
+    dt: _Optional[float] = None,
     t=None,
     *,
     ticks=None,
-    tick_hz: Optional[float] = None,
+    tick_hz: _Optional[float] = None,
     tick_bits: int = 32,
     scheme: str = "expmap",
     stabilizer: str = "first_order",
     input: str = "history",
     coning: str = "two_sample",
     accumulator: str = "plain",
-    precision: Optional[str] = None,
+    precision: _Optional[str] = None,
     q0=None,
     alignment=None,
     bias=None,
-    calibration: Optional[Calibration] = None,
+    calibration: _Optional[Calibration] = None,
     on_refused: str = "raise",
     acc=None,
     temperature=None,
     sample: str = "instant",
     group_delay: float = 0.0,
-    count_scale: Optional[CountScale] = None,
+    count_scale: _Optional[CountScale] = None,
 ):
     """Integrates body-frame gyro samples into attitude quaternions, bit for bit as the Rust library.
 
@@ -718,23 +745,23 @@ if integrate.__doc__:  # None under python -OO
     integrate.__doc__ = integrate.__doc__.format(options=_OPTIONS_DOC.lstrip("\n"))
 
 
-def _rows(name: str, a, width: int) -> Tuple[np.ndarray, tuple]:
-    arr = np.asarray(a)
+def _rows(name: str, a, width: int) -> _Tuple[_np.ndarray, tuple]:
+    arr = _np.asarray(a)
     if arr.dtype.kind not in "fiu":
         raise TypeError(f"{name} must be a real numeric array, got dtype {arr.dtype}")
     if arr.shape[-1:] != (width,):
         raise ValueError(f"{name} must have shape (..., {width}), got {arr.shape}")
-    dtype = np.float32 if arr.dtype == np.float32 else np.float64
-    return np.ascontiguousarray(arr.reshape(-1, width), dtype=dtype), arr.shape[:-1]
+    dtype = _np.float32 if arr.dtype == _np.float32 else _np.float64
+    return _np.ascontiguousarray(arr.reshape(-1, width), dtype=dtype), arr.shape[:-1]
 
 
-def _map(fn32, fn64, name: str, a, win: int, wout: int) -> np.ndarray:
+def _map(fn32, fn64, name: str, a, win: int, wout: int) -> _np.ndarray:
     rows, lead = _rows(name, a, win)
-    out = (fn32 if rows.dtype == np.float32 else fn64)(rows)
+    out = (fn32 if rows.dtype == _np.float32 else fn64)(rows)
     return out.reshape(lead + (wout,))
 
 
-def to_euler_zyx(q) -> np.ndarray:
+def to_euler_zyx(q) -> _np.ndarray:
     """Aerospace Euler angles ``[..., (yaw, pitch, roll)]`` (rad) of unit quaternions ``[..., (w, x, y, z)]``.
 
     ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (intrinsic Z-Y'-X''; SciPy ``as_euler("ZYX")``); yaw and roll in
@@ -744,13 +771,13 @@ def to_euler_zyx(q) -> np.ndarray:
     return _map(_native.to_euler_zyx_f32, _native.to_euler_zyx_f64, "q", q, 4, 3)
 
 
-def from_euler_zyx(e) -> np.ndarray:
+def from_euler_zyx(e) -> _np.ndarray:
     """Quaternions ``[..., (w, x, y, z)]`` of aerospace Euler angles ``[..., (yaw, pitch, roll)]`` (rad):
     ``qz(yaw) ⊗ qy(pitch) ⊗ qx(roll)``."""
     return _map(_native.from_euler_zyx_f32, _native.from_euler_zyx_f64, "e", e, 3, 4)
 
 
-def to_euler_zxz(q) -> np.ndarray:
+def to_euler_zxz(q) -> _np.ndarray:
     """Classical Euler angles ``[..., (psi, theta, phi)]`` (rad) of unit quaternions ``[..., (w, x, y, z)]``.
 
     ``R = Rz(psi) Rx(theta) Rz(phi)`` (intrinsic Z-X'-Z''; SciPy ``as_euler("ZXZ")``); psi, phi in
@@ -759,7 +786,7 @@ def to_euler_zxz(q) -> np.ndarray:
     return _map(_native.to_euler_zxz_f32, _native.to_euler_zxz_f64, "q", q, 4, 3)
 
 
-def from_euler_zxz(e) -> np.ndarray:
+def from_euler_zxz(e) -> _np.ndarray:
     """Quaternions ``[..., (w, x, y, z)]`` of classical Euler angles ``[..., (psi, theta, phi)]`` (rad):
     ``qz(psi) ⊗ qx(theta) ⊗ qz(phi)``."""
     return _map(_native.from_euler_zxz_f32, _native.from_euler_zxz_f64, "e", e, 3, 4)

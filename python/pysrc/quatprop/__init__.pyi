@@ -2,10 +2,31 @@
 the attitude maps body vectors to the reference frame, rates are body-frame (q' = ½ q ⊗ (0, ω)),
 radians, rad/s, seconds."""
 
+from dataclasses import dataclass
 from typing import Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "integrate",
+    "Stream",
+    "Calibration",
+    "calibrate",
+    "RefusedSample",
+    "BiasEstimator",
+    "CountScale",
+    "to_euler_zyx",
+    "from_euler_zyx",
+    "to_euler_zxz",
+    "from_euler_zxz",
+    "SCHEMES",
+    "STABILIZERS",
+    "INPUTS",
+    "CONINGS",
+    "AXIS_REMAPS",
+    "SAMPLES",
+]
 
 __version__: str
 
@@ -16,15 +37,15 @@ CONINGS: Tuple[str, ...]
 AXIS_REMAPS: Tuple[str, ...]
 SAMPLES: Tuple[str, ...]
 
-Scheme = Literal["euler", "rk2", "rk3", "rk4", "rk5", "expmap", "magnus4", "cf4"]
+_Scheme = Literal["euler", "rk2", "rk3", "rk4", "rk5", "expmap", "magnus4", "cf4"]
 # "off", "normalize", "first_order", or "every:N" (N >= 1).
-Stabilizer = str
-Input = Literal["hold", "linear", "history", "twice_rate", "gauss_points", "delta_angles"]
-Coning = Literal["uncorrected", "one_plus_previous", "two_sample", "three_sample", "four_sample", "five_sample"]
-Accumulator = Literal["plain", "kahan"]
-Precision = Literal["f32", "f64"]
-SampleMeaning = Literal["instant", "interval_mean"]
-FloatArray = npt.NDArray[np.floating]
+_Stabilizer = str
+_Input = Literal["hold", "linear", "history", "twice_rate", "gauss_points", "delta_angles"]
+_Coning = Literal["uncorrected", "one_plus_previous", "two_sample", "three_sample", "four_sample", "five_sample"]
+_Accumulator = Literal["plain", "kahan"]
+_Precision = Literal["f32", "f64"]
+_SampleMeaning = Literal["instant", "interval_mean"]
+_FloatArray = npt.NDArray[np.floating]
 
 class RefusedSample(ValueError):
     """A sample the propagator refused: its index in gyr, the core's Error variant and its message."""
@@ -34,54 +55,44 @@ class RefusedSample(ValueError):
     reason: str
     def __init__(self, index: int, kind: str, reason: str) -> None: ...
 
+@dataclass(frozen=True)
 class BiasEstimator:
-    """Learns the gyro bias (rad/s) over still windows of `window` samples, every axis within `gate` rad/s
-    (and every acceleration within `accel_gate` of the window's first); a running mean over the last
-    `memory` still windows; a change beyond `change` rad/s confirmed by two windows restarts it;
-    `temperature_span` fits bias(T); `initial` starts from a known bias."""
+    """Learns the gyro bias (rad/s) over still windows of `window` seconds (every axis within `gate` rad/s,
+    the 8 block means flat against the scatter at rest, learned or given by `noise_density`, rad/√s): a
+    Kalman filter on a bias that walks with density `drift` (rad/s/√s; None: 2e-5), so a slow turn is kept
+    until the bias could have moved as far; a step at rest is followed within two windows. `initial` with
+    `initial_sigma` starts from a known bias; `accel_gate` also needs the acceleration still;
+    `temperature_span` fits bias(T); `motion` adds the residual learned in motion from `acc`; `period` (s)
+    is the sample period when the stream has none (timestamps)."""
 
-    window: int
+    window: float
     gate: float
-    memory: int
-    initial: Optional[Sequence[float]]
-    change: Optional[float]
-    accel_gate: Optional[float]
-    temperature_span: Optional[float]
-    motion: bool
-    def __init__(
-        self,
-        window: int,
-        gate: float,
-        memory: int = 64,
-        initial: Optional[Sequence[float]] = None,
-        change: Optional[float] = None,
-        accel_gate: Optional[float] = None,
-        temperature_span: Optional[float] = None,
-        motion: bool = False,
-    ) -> None: ...
+    drift: Optional[float] = None
+    noise_density: Optional[float] = None
+    initial: Optional[Sequence[float]] = None
+    initial_sigma: Optional[float] = None
+    accel_gate: Optional[float] = None
+    temperature_span: Optional[float] = None
+    motion: bool = False
+    period: Optional[float] = None
 
+@dataclass(frozen=True)
 class CountScale:
     """A 16-bit gyro's scale: counts → rad/s (exactly one of full_scale_dps, sensitivity); a count at a rail
     marks the sample saturated."""
 
-    full_scale_dps: Optional[float]
-    sensitivity: Optional[float]
-    def __init__(self, full_scale_dps: Optional[float] = None, sensitivity: Optional[float] = None) -> None: ...
+    full_scale_dps: Optional[float] = None
+    sensitivity: Optional[float] = None
 
+@dataclass(frozen=True)
 class Calibration:
     """A gyro's calibration in the sensor's axes: ω = M · (s ⊙ (r − o)) (Fusion's model_inertial)."""
 
-    offset: Sequence[float]
-    sensitivity: Sequence[float]
-    misalignment: Sequence[Sequence[float]]
-    def __init__(
-        self,
-        offset: Sequence[float] = ...,
-        sensitivity: Sequence[float] = ...,
-        misalignment: Sequence[Sequence[float]] = ...,
-    ) -> None: ...
+    offset: Sequence[float] = ...
+    sensitivity: Sequence[float] = ...
+    misalignment: Sequence[Sequence[float]] = ...
 
-def calibrate(gyr: npt.ArrayLike, calibration: Calibration, precision: Optional[Precision] = None) -> FloatArray:
+def calibrate(gyr: npt.ArrayLike, calibration: Calibration, precision: Optional[_Precision] = None) -> _FloatArray:
     """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates."""
 
 class Stream:
@@ -95,18 +106,18 @@ class Stream:
         timestamps: bool = False,
         tick_hz: Optional[float] = None,
         tick_bits: int = 32,
-        scheme: Scheme = "expmap",
-        stabilizer: Stabilizer = "first_order",
-        input: Input = "history",
-        coning: Coning = "two_sample",
-        accumulator: Accumulator = "plain",
-        precision: Optional[Precision] = None,
+        scheme: _Scheme = "expmap",
+        stabilizer: _Stabilizer = "first_order",
+        input: _Input = "history",
+        coning: _Coning = "two_sample",
+        accumulator: _Accumulator = "plain",
+        precision: Optional[_Precision] = None,
         q0: Optional[npt.ArrayLike] = None,
         alignment: Union[str, npt.ArrayLike, None] = None,
         bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
         calibration: Optional[Calibration] = None,
         on_refused: Literal["raise", "mask"] = "raise",
-        sample: SampleMeaning = "instant",
+        sample: _SampleMeaning = "instant",
         group_delay: float = 0.0,
         count_scale: Optional[CountScale] = None,
     ) -> None: ...
@@ -118,7 +129,7 @@ class Stream:
         ticks: Optional[npt.ArrayLike] = None,
         acc: Optional[npt.ArrayLike] = None,
         temperature: Optional[npt.ArrayLike] = None,
-    ) -> Union[FloatArray, Tuple[FloatArray, npt.NDArray[np.bool_]]]:
+    ) -> Union[_FloatArray, Tuple[_FloatArray, npt.NDArray[np.bool_]]]:
         """(N, 3) samples → (N, 4) attitudes after each; (q, refused) when made with on_refused="mask"."""
     @property
     def attitude(self) -> npt.NDArray[np.float64]: ...
@@ -147,12 +158,12 @@ def integrate(
     ticks: Optional[npt.ArrayLike] = None,
     tick_hz: Optional[float] = None,
     tick_bits: int = 32,
-    scheme: Scheme = "expmap",
-    stabilizer: Stabilizer = "first_order",
-    input: Input = "history",
-    coning: Coning = "two_sample",
-    accumulator: Accumulator = "plain",
-    precision: Optional[Precision] = None,
+    scheme: _Scheme = "expmap",
+    stabilizer: _Stabilizer = "first_order",
+    input: _Input = "history",
+    coning: _Coning = "two_sample",
+    accumulator: _Accumulator = "plain",
+    precision: Optional[_Precision] = None,
     q0: Optional[npt.ArrayLike] = None,
     alignment: Union[str, npt.ArrayLike, None] = None,
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
@@ -160,10 +171,10 @@ def integrate(
     on_refused: Literal["raise"] = "raise",
     acc: Optional[npt.ArrayLike] = None,
     temperature: Optional[npt.ArrayLike] = None,
-    sample: SampleMeaning = "instant",
+    sample: _SampleMeaning = "instant",
     group_delay: float = 0.0,
     count_scale: Optional[CountScale] = None,
-) -> FloatArray:
+) -> _FloatArray:
     """(N, 3) body rates (rad/s; increments in rad for delta_angles) → (N, 4) attitudes [w, x, y, z]
     (scalar first, Hamilton, body to reference) after each sample, in the dtype of `precision`.
     Give exactly one of dt (fixed period, s), t (N timestamps, s, float64) or ticks (+ tick_hz).
@@ -178,12 +189,12 @@ def integrate(
     ticks: Optional[npt.ArrayLike] = None,
     tick_hz: Optional[float] = None,
     tick_bits: int = 32,
-    scheme: Scheme = "expmap",
-    stabilizer: Stabilizer = "first_order",
-    input: Input = "history",
-    coning: Coning = "two_sample",
-    accumulator: Accumulator = "plain",
-    precision: Optional[Precision] = None,
+    scheme: _Scheme = "expmap",
+    stabilizer: _Stabilizer = "first_order",
+    input: _Input = "history",
+    coning: _Coning = "two_sample",
+    accumulator: _Accumulator = "plain",
+    precision: Optional[_Precision] = None,
     q0: Optional[npt.ArrayLike] = None,
     alignment: Union[str, npt.ArrayLike, None] = None,
     bias: Union[BiasEstimator, npt.ArrayLike, None] = None,
@@ -191,21 +202,21 @@ def integrate(
     on_refused: Literal["mask"],
     acc: Optional[npt.ArrayLike] = None,
     temperature: Optional[npt.ArrayLike] = None,
-    sample: SampleMeaning = "instant",
+    sample: _SampleMeaning = "instant",
     group_delay: float = 0.0,
     count_scale: Optional[CountScale] = None,
-) -> Tuple[FloatArray, npt.NDArray[np.bool_]]:
+) -> Tuple[_FloatArray, npt.NDArray[np.bool_]]:
     """As above; a refused sample is skipped (state kept, interval carried into the next sample) and
     flagged True in the returned (N,) boolean mask."""
 
-def to_euler_zyx(q: npt.ArrayLike) -> FloatArray:
+def to_euler_zyx(q: npt.ArrayLike) -> _FloatArray:
     """[..., (w, x, y, z)] → [..., (yaw, pitch, roll)] (rad), R = Rz(yaw) Ry(pitch) Rx(roll)."""
 
-def from_euler_zyx(e: npt.ArrayLike) -> FloatArray:
+def from_euler_zyx(e: npt.ArrayLike) -> _FloatArray:
     """[..., (yaw, pitch, roll)] (rad) → [..., (w, x, y, z)] = qz(yaw) ⊗ qy(pitch) ⊗ qx(roll)."""
 
-def to_euler_zxz(q: npt.ArrayLike) -> FloatArray:
+def to_euler_zxz(q: npt.ArrayLike) -> _FloatArray:
     """[..., (w, x, y, z)] → [..., (psi, theta, phi)] (rad), R = Rz(psi) Rx(theta) Rz(phi)."""
 
-def from_euler_zxz(e: npt.ArrayLike) -> FloatArray:
+def from_euler_zxz(e: npt.ArrayLike) -> _FloatArray:
     """[..., (psi, theta, phi)] (rad) → [..., (w, x, y, z)] = qz(psi) ⊗ qx(theta) ⊗ qz(phi)."""

@@ -2,8 +2,10 @@
 //!
 //! Uses the core library directly — concrete types, `push_burst` / `push_burst_timed` / `push` as a Rust
 //! user calls them — never the extension, so the comparison is real. Output (little-endian, raw):
-//! `inputs.f64` (gyr N×3, t N, gyr_bad N×3, t_bad N), `ticks.u32` (N), and per case `<name>.q`
-//! (N×4 in the case's precision) and `<name>.mask` (N bytes, 1 = refused); `cases.json` lists the cases.
+//! `inputs.f64` (gyr N×3, t N, gyr_bad N×3, t_bad N), `ticks.u32` (N), `rest.f64` (N×3: a gyro at rest
+//! with a bias step, then a slow turn), and per case `<name>.q` (N×4 in the case's precision) and
+//! `<name>.mask` (N bytes, 1 = refused); `cases.json` lists the cases, with the bias estimator's final
+//! estimate (`"bias"`, rad/s) where one runs.
 //!
 //! `cargo run --release -p quatprop-reference -- tests/data/reference` (from `python/`).
 
@@ -15,6 +17,7 @@ use quatprop::accumulate::{Accumulator, Kahan};
 use quatprop::frontend::{Alignment, AxisRemap, BiasEstimator, FixedBias, FixedPeriod, TickClock};
 use quatprop::input::coning::ThreeSample;
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::noise::GyroNoise;
 use quatprop::scheme::{Cf4, ExpMap, Magnus4, Rk3, Rk4, Rk5, Scheme};
 use quatprop::stabilize::{Every, FirstOrder, Normalize, Off, Stabilizer};
 use quatprop::{DeltaAngle, EulerZyx, GyroSample, Propagator, Quat, Real, Sample, Vec3};
@@ -62,6 +65,43 @@ fn inputs() -> Inputs {
     t_bad[800] = t_bad[790]; // backwards
     gyr_bad[700] = [1.0e4, 0.0, 0.0]; // a spike: 10 rad in one step, beyond every Runge–Kutta bound
     (gyr, t, gyr_bad, t_bad, ticks)
+}
+
+/// A gyro at rest for the bias estimator's cases: a bias plus uniform noise of ±0.001 rad/s (σ = 0.001/√3
+/// per sample, so `N = σ·√period` rad/√s), the bias stepping at rest by (0.004, 0, −0.003) rad/s at
+/// sample 520 (inside the window from 500), then from sample 900 a turn about z reaching 0.02 rad/s (below
+/// the gates) over 30 samples.
+const REST_NOISE: f64 = 0.001;
+
+fn rest_inputs() -> Vec<[f64; 3]> {
+    let mut state: u64 = 0x2545_F491_4F6C_DD1D;
+    let mut noise = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        2.0 * REST_NOISE * (((state >> 11) as f64 / (1u64 << 53) as f64) - 0.5)
+    };
+    (0..N)
+        .map(|k| {
+            let mut b = [0.011, -0.007, 0.004];
+            if k >= 520 {
+                b[0] += 0.004;
+                b[2] -= 0.003;
+            }
+            let turn = 0.02 * ((k as f64 - 900.0) / 30.0).clamp(0.0, 1.0);
+            [b[0] + noise(), b[1] + noise(), b[2] + turn + noise()]
+        })
+        .collect()
+}
+
+/// A vector's components as JSON, each printed exactly (Rust's shortest round-trip form).
+fn json3<T: Real>(v: Vec3<T>) -> String {
+    format!(
+        "[{:?}, {:?}, {:?}]",
+        v.x.to_f64(),
+        v.y.to_f64(),
+        v.z.to_f64()
+    )
 }
 
 trait FromRow<T>: Sample {
@@ -194,6 +234,7 @@ impl Writer {
         options: &str,
         inputs: &str,
         (q, mask): Run<T>,
+        bias: Option<String>,
     ) {
         let q: Vec<u8> = q
             .iter()
@@ -215,8 +256,9 @@ impl Writer {
         let sep = if self.json.is_empty() { "" } else { ",\n" };
         let _ = write!(
             self.json,
-            "{sep}  {{\"name\": \"{name}\", \"inputs\": \"{inputs}\", \"options\": {options}, \"refused\": [{}]}}",
-            refused.join(", ")
+            "{sep}  {{\"name\": \"{name}\", \"inputs\": \"{inputs}\", \"options\": {options}, \"refused\": [{}]{}}}",
+            refused.join(", "),
+            bias.map_or(String::new(), |b| format!(", \"bias\": {b}")),
         );
     }
 }
@@ -247,6 +289,14 @@ fn main() {
             .collect::<Vec<_>>(),
     )
     .expect("write ticks");
+    fs::write(
+        dir.join("rest.f64"),
+        rest_inputs()
+            .iter()
+            .flat_map(|r| r.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
+    )
+    .expect("write rest");
     let deltas: Vec<[f64; 3]> = gyr.iter().map(|r| r.map(|v| v * PERIOD)).collect();
 
     let mut w = Writer {
@@ -264,6 +314,7 @@ fn main() {
         &format!("{{{fx}, \"precision\": \"f32\"}}"),
         "gyr",
         fixed(p, &s32),
+        None,
     );
     let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
     w.case(
@@ -271,6 +322,7 @@ fn main() {
         &format!("{{{fx}, \"precision\": \"f64\"}}"),
         "gyr",
         fixed(p, &s64),
+        None,
     );
     // RK4 on held rates, normalized, compensated, from q0.
     let p = Propagator::new(q0(), Rk4, Hold, Normalize)
@@ -281,6 +333,7 @@ fn main() {
         &format!("{{{fx}, \"precision\": \"f32\", \"scheme\": \"rk4\", \"input\": \"hold\", \"stabilizer\": \"normalize\", \"accumulator\": \"kahan\", \"q0\": [0.9, 0.1, -0.3, 0.2]}}"),
         "gyr",
         fixed(p, &s32),
+        None,
     );
     // Timestamps in seconds.
     let p = Propagator::new(Quat::IDENTITY, Magnus4, GaussPoints::new(), Every(7)).unwrap();
@@ -289,6 +342,7 @@ fn main() {
         "{\"t\": true, \"precision\": \"f64\", \"scheme\": \"magnus4\", \"input\": \"gauss_points\", \"stabilizer\": \"every:7\"}",
         "gyr",
         timed(p, &s64, &t),
+        None,
     );
     let p = Propagator::new(Quat::IDENTITY, Cf4, TwiceRate::new(), Off)
         .unwrap()
@@ -298,6 +352,7 @@ fn main() {
         "{\"t\": true, \"precision\": \"f32\", \"scheme\": \"cf4\", \"input\": \"twice_rate\", \"stabilizer\": \"off\", \"accumulator\": \"kahan\"}",
         "gyr",
         timed(p, &s32, &t),
+        None,
     );
     // The sensor's ticks (wrapping 32-bit counter at 1 MHz).
     let p = Propagator::new(Quat::IDENTITY, Rk5, History::new(), FirstOrder).unwrap();
@@ -306,6 +361,7 @@ fn main() {
         "{\"ticks\": true, \"tick_hz\": 1000000.0, \"precision\": \"f64\", \"scheme\": \"rk5\"}",
         "gyr",
         ticked(p, &s64, &ticks),
+        None,
     );
     // Delta angles with a three-sample coning correction.
     let d32 = samples::<f32, DeltaAngle<f32>>(&deltas);
@@ -321,6 +377,7 @@ fn main() {
         &format!("{{{fx}, \"precision\": \"f32\", \"input\": \"delta_angles\", \"coning\": \"three_sample\", \"stabilizer\": \"normalize\"}}"),
         "deltas",
         fixed(p, &d32),
+        None,
     );
     // Refused samples (NaN, duplicate and backward timestamps, a spike), mask mode.
     let b32 = samples::<f32, GyroSample<f32>>(&gyr_bad);
@@ -331,6 +388,7 @@ fn main() {
         "{\"t\": true, \"precision\": \"f32\", \"scheme\": \"rk4\", \"input\": \"linear\", \"on_refused\": \"mask\"}",
         "bad",
         timed(p, &b32, &t_bad),
+        None,
     );
     let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
     w.case(
@@ -338,6 +396,7 @@ fn main() {
         &format!("{{{fx}, \"precision\": \"f64\", \"on_refused\": \"mask\"}}"),
         "bad",
         fixed(p, &b64),
+        None,
     );
     let p = Propagator::new(Quat::IDENTITY, Rk3, Hold, FirstOrder).unwrap();
     w.case(
@@ -345,10 +404,17 @@ fn main() {
         &format!("{{{fx}, \"precision\": \"f64\", \"scheme\": \"rk3\", \"input\": \"hold\", \"on_refused\": \"mask\"}}"),
         "bad",
         fixed(p, &b64),
+        None,
     );
-    // The front end: an axis remap and a bias estimator; a measured alignment matrix and a fixed bias.
+    // The front end: an axis remap and a bias estimator (windows of 0.05 s: 50 samples), as Python
+    // builds it from seconds; a measured alignment matrix and a fixed bias.
     let remap = AxisRemap::PyNxPz;
-    let mut est = BiasEstimator::<f32>::from_samples(50, 0.9_f64 as f32, 4).unwrap();
+    let mut est = BiasEstimator::<f32>::new(0.05, PERIOD, 0.9).unwrap();
+    assert_eq!(
+        Ok(est),
+        BiasEstimator::from_samples(50, PERIOD, 0.9),
+        "0.05 s at 1 kHz is 50 samples"
+    );
     let fe: Vec<GyroSample<f32>> = s32
         .iter()
         .map(|s| {
@@ -363,9 +429,54 @@ fn main() {
     let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
     w.case(
         "frontend_remap_estimator_f32",
-        &format!("{{{fx}, \"precision\": \"f32\", \"alignment\": \"PyNxPz\", \"bias\": {{\"window\": 50, \"gate\": 0.9, \"memory\": 4}}}}"),
+        &format!("{{{fx}, \"precision\": \"f32\", \"alignment\": \"PyNxPz\", \"bias\": {{\"window\": 0.05, \"gate\": 0.9}}}}"),
         "gyr",
         fixed(p, &fe),
+        Some(json3(est.bias())),
+    );
+    // The estimator at rest: a step followed, a slow turn kept; every parameter the Python class has
+    // that the stream can take without accelerations (drift, the noise density, a start with its sigma).
+    let rest = rest_inputs();
+    let r64 = samples::<f64, GyroSample<f64>>(&rest);
+    let r32 = samples::<f32, GyroSample<f32>>(&rest);
+    let density = REST_NOISE / 3.0_f64.sqrt() * PERIOD.sqrt();
+    let noise = GyroNoise::new(density, 0.0).unwrap();
+    let mut est = BiasEstimator::<f64>::new(0.05, PERIOD, 0.05)
+        .unwrap()
+        .with_drift(1e-3)
+        .unwrap()
+        .with_noise(&noise)
+        .unwrap();
+    let fe: Vec<GyroSample<f64>> = r64.iter().map(|s| est.update(*s).unwrap_or(*s)).collect();
+    // The step at rest (sample 520) followed; the turn (from sample 900) not taken for bias.
+    let stepped = Vec3::new(0.015, -0.007, 0.001);
+    assert!((est.bias() - stepped).norm() < 5e-4, "{:?}", est.bias());
+    let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    w.case(
+        "estimator_rest_drift_noise_f64",
+        &format!("{{{fx}, \"precision\": \"f64\", \"bias\": {{\"window\": 0.05, \"gate\": 0.05, \"drift\": 0.001, \"noise_density\": {density:?}}}}}"),
+        "rest",
+        fixed(p, &fe),
+        Some(json3(est.bias())),
+    );
+    let start = Vec3::new(0.0105_f32, -0.0075, 0.0045);
+    let mut est = BiasEstimator::<f32>::new(0.05, PERIOD, 0.05)
+        .unwrap()
+        .with_initial(start, 1e-3)
+        .unwrap();
+    let fe: Vec<GyroSample<f32>> = r32.iter().map(|s| est.update(*s).unwrap_or(*s)).collect();
+    assert!(
+        (est.bias().to_f64() - stepped).norm() < 5e-4,
+        "{:?}",
+        est.bias()
+    );
+    let p = Propagator::new(Quat::IDENTITY, Rk4, Linear::new(), FirstOrder).unwrap();
+    w.case(
+        "estimator_rest_initial_rk4_f32",
+        &format!("{{{fx}, \"precision\": \"f32\", \"scheme\": \"rk4\", \"input\": \"linear\", \"bias\": {{\"window\": 0.05, \"gate\": 0.05, \"initial\": {}, \"initial_sigma\": 0.001}}}}", json3(start)),
+        "rest",
+        fixed(p, &fe),
+        Some(json3(est.bias())),
     );
     let rq = Quat::<f64>::from_euler_zyx(EulerZyx {
         yaw: 0.3,
@@ -394,6 +505,7 @@ fn main() {
         &format!("{{\"t\": true, \"precision\": \"f64\", \"scheme\": \"rk3\", \"alignment\": {matrix}, \"bias\": [0.01, -0.02, 0.005]}}"),
         "gyr",
         timed(p, &fe, &t),
+        None,
     );
 
     let json = format!(
