@@ -67,4 +67,3 @@ mod step;
 
 pub use noise::GyroNoise;
 pub use step::{ProcessNoise, Step, Transition};
-pub(crate) use step::{SERIES_TERMS, STEP_SERIES};
