@@ -13,7 +13,8 @@ use crate::configs::{
 };
 use crate::plot::{plot, Axis, Series};
 use crate::report::Ctx;
-use crate::scenes::{self, attitude_error, stream, Scene};
+use crate::scene::{attitude_error, stream, Scene};
+use crate::scenes;
 use crate::study::{CsvFile, Scale, Study};
 use crate::table::{self, cell, Csv, Table};
 use quatprop::scheme::SchemeKind;
