@@ -1,6 +1,6 @@
 //! Each peer as its users write it: one plain loop over a stream, the peer's state in a local, the peer's
 //! call once per sample. The lab's peer wrappers (`configs.rs`, fed piece by piece through `Integrator`)
-//! must give these loops' attitudes bit for bit (tested in `configs.rs`) and cost what they cost: the work-precision
+//! must give these loops' attitudes bit for bit (tested there) and cost what they cost: the work-precision
 //! headline times each loop beside its wrapper in the same sweep (table `work_precision_peer_loops.csv`).
 //!
 //! A stream's first sample only starts it (its interval is not integrated), as in the wrappers.

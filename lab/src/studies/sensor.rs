@@ -5,7 +5,7 @@
 //! times, integrated in f64 by Magnus-4 with 16 substeps per sample interval (checked against 8 in the report).
 
 use crate::configs::{Config, Input, Peer, Stab};
-use crate::cli::Sweep;
+use crate::args::Sweep;
 use crate::report::Ctx;
 use crate::rng::Rng;
 use crate::sample::Sample;
