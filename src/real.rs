@@ -10,6 +10,7 @@
 //! the exponential map, first-order normalization).
 
 use core::fmt::{Debug, Display};
+use core::marker::PhantomData;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 pub(crate) mod sealed {
@@ -43,15 +44,30 @@ pub(crate) mod sealed {
         /// `w² + x² + y² + z² − 1` with its own rounding error far below ε (`f32`: in `f64`, where the
         /// squares are exact; `f64`: compensated with `fma`). Telemetry only, never on the step path.
         fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self;
-        /// The Taylor coefficients of the error-state step's five functions of `|φ|²`
-        /// (`crate::error_state`), rounded once at compile time.
-        const STEP_SERIES: [[Self; crate::error_state::SERIES_TERMS]; 5];
+        /// `Table`'s constants rounded to this type (to nearest, as [`super::Real::from_f64`]), once per
+        /// table and type, at compile time: a table of coefficients is written once, in `f64`, where it is
+        /// used, and generic code reads it in its own precision with no conversion on its path.
+        fn rounded<Table: F64Table<ROWS, COLS>, const ROWS: usize, const COLS: usize>(
+        ) -> &'static [[Self; COLS]; ROWS];
         /// Converts an integer (rounds to nearest beyond 2²⁴ for `f32`): one instruction with an FPU.
         fn from_i32(v: i32) -> Self;
         /// Converts to an integer (toward zero, saturating): one instruction with an FPU.
         fn to_i32(self) -> i32;
     }
+
+    /// A table of `f64` constants (`ROWS` × `COLS`) that generic code reads in its own precision through
+    /// [`Float::rounded`]. Implemented by a unit type beside the code that owns the table.
+    pub trait F64Table<const ROWS: usize, const COLS: usize> {
+        /// The table, in `f64`.
+        const F64: [[f64; COLS]; ROWS];
+    }
 }
+
+use sealed::F64Table;
+
+/// The tables of [`F64Table`]s rounded to `T`: an associated const per table and type, so each is rounded
+/// once, at compile time.
+struct Rounded<T, Table, const ROWS: usize, const COLS: usize>(PhantomData<(T, Table)>);
 
 /// A real number type the propagator computes in: `f32` (what firmware runs) or `f64`.
 ///
@@ -144,20 +160,11 @@ macro_rules! impl_real {
             fn sum_sq_minus_one(w: Self, x: Self, y: Self, z: Self) -> Self {
                 $sum_sq(w, x, y, z)
             }
-            const STEP_SERIES: [[Self; crate::error_state::SERIES_TERMS]; 5] = {
-                let t = crate::error_state::STEP_SERIES;
-                let mut out = [[0.0; crate::error_state::SERIES_TERMS]; 5];
-                let mut f = 0;
-                while f < 5 {
-                    let mut k = 0;
-                    while k < crate::error_state::SERIES_TERMS {
-                        out[f][k] = t[f][k] as $t;
-                        k += 1;
-                    }
-                    f += 1;
-                }
-                out
-            };
+            #[inline(always)]
+            fn rounded<Table: F64Table<ROWS, COLS>, const ROWS: usize, const COLS: usize>(
+            ) -> &'static [[Self; COLS]; ROWS] {
+                &Rounded::<$t, Table, ROWS, COLS>::TABLE
+            }
             #[inline(always)]
             fn from_i32(v: i32) -> Self {
                 v as $t
@@ -166,6 +173,25 @@ macro_rules! impl_real {
             fn to_i32(self) -> i32 {
                 self as i32
             }
+        }
+
+        impl<Table: F64Table<ROWS, COLS>, const ROWS: usize, const COLS: usize>
+            Rounded<$t, Table, ROWS, COLS>
+        {
+            const TABLE: [[$t; COLS]; ROWS] = {
+                let t = Table::F64;
+                let mut out = [[0.0; COLS]; ROWS];
+                let mut r = 0;
+                while r < ROWS {
+                    let mut c = 0;
+                    while c < COLS {
+                        out[r][c] = t[r][c] as $t;
+                        c += 1;
+                    }
+                    r += 1;
+                }
+                out
+            };
         }
 
         impl Real for $t {
@@ -309,8 +335,29 @@ fn sum_sq_minus_one_f64(w: f64, x: f64, y: f64, z: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::sealed::Float;
+    use super::sealed::{F64Table, Float};
     use super::Real;
+
+    /// A table whose entries round differently in `f32` (1/3, 0.1, a subnormal, beyond `f32::MAX`).
+    struct Awkward;
+    impl F64Table<2, 3> for Awkward {
+        const F64: [[f64; 3]; 2] = [[1.0 / 3.0, 0.1, -1.0e-40], [1.0e39, -0.0, 2.5]];
+    }
+
+    /// `Float::rounded` is each entry through `Real::from_f64`, bit for bit, in both precisions.
+    #[test]
+    fn rounded_tables_are_from_f64_of_each_entry() {
+        fn check<T: Real>(to_bits: fn(T) -> u64) {
+            let t = T::rounded::<Awkward, 2, 3>();
+            for (row, row64) in t.iter().zip(Awkward::F64) {
+                for (&v, v64) in row.iter().zip(row64) {
+                    assert_eq!(to_bits(v), to_bits(T::from_f64(v64)), "{v64:e}");
+                }
+            }
+        }
+        check::<f32>(|v| v.to_bits() as u64);
+        check::<f64>(f64::to_bits);
+    }
 
     /// `Real::abs` clears the sign bit and nothing else, in both precisions (on Rust < 1.85 an `abs` written
     /// `<f32>::abs(self)` called itself: .ci/msrv runs this with the MSRV toolchain).

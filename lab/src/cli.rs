@@ -1,15 +1,14 @@
 //! The command line (clap): the global options (`--out`, `--quick`, `--full`), `report` (every study in the
 //! registry's order) and one sub-command per study, generated from the registry (`studies::ALL`); typed
-//! values parsed and checked before anything runs; `quatprop-lab help <command>` for each command's options.
-//! Also the argument types several studies share ([`Horizon`], [`Sweep`]) and their value parsers.
+//! values parsed and checked before anything runs (the shared argument types: `args.rs`); `quatprop-lab help
+//! <command>` for each command's options. After the run, [`Invocation::finish`] writes the report and, after
+//! `report`, checks its files against the registry.
 
-use crate::configs::{self, Input, Precision, Stab};
-use crate::report::Ctx;
-use crate::scenes;
-use crate::studies;
-use crate::study::Scale;
+use crate::args::ReportArgs;
+use crate::report::{self, Ctx};
+use crate::scale::Scale;
+use crate::{outputs, studies};
 use clap::{ArgMatches, Args, CommandFactory as _, FromArgMatches, Parser};
-use quatprop::scheme::SchemeKind;
 use std::ffi::OsString;
 use std::path::PathBuf;
 
@@ -42,13 +41,6 @@ impl Cli {
             Scale::Default
         }
     }
-}
-
-/// The arguments of `report` (handed to the studies that take them: `Study::report_args`).
-#[derive(Args, Debug, Clone, Default)]
-pub struct ReportArgs {
-    #[command(flatten)]
-    pub horizon: Horizon,
 }
 
 /// The whole command line: the global options, `report`, and every study of the registry.
@@ -115,146 +107,28 @@ impl Invocation {
                 .run_matches(ctx, m),
         }
     }
-}
 
-/// Step counts of the long runs.
-#[derive(Args, Debug, Clone, Default)]
-pub struct Horizon {
-    /// To 1e9 steps (instead of 1e7 at the default scale, 1e8 with --full).
-    #[arg(long)]
-    pub long: bool,
-    /// Steps (at least 1e3; `1e7` and `10000000` both work); overrides --long and --quick.
-    #[arg(long, value_parser = parse_steps)]
-    pub steps: Option<u64>,
-}
-
-/// Parameters of a work-precision or sensor sweep (empty lists: the defaults).
-#[derive(Args, Debug, Clone, Default)]
-pub struct Sweep {
-    /// Scenes by key (comma-separated).
-    #[arg(long = "scene", value_delimiter = ',', value_parser = parse_scene)]
-    pub scenes: Vec<String>,
-    /// Schemes (comma-separated): Euler, Rk2, Rk3, Rk4, Rk5, ExpMap, Magnus4, Cf4.
-    #[arg(long, value_delimiter = ',', value_parser = parse_scheme)]
-    pub schemes: Vec<SchemeKind>,
-    /// Stabilizers (comma-separated): Off, Normalize, FirstOrder, EveryN (e.g. Every16), Baumgarte (k = 0.5)
-    /// or Baumgarte=K (Runge–Kutta schemes only).
-    #[arg(long, value_delimiter = ',', value_parser = parse_stab)]
-    pub stabilizers: Vec<Stab>,
-    /// Input models (comma-separated): hold, linear, history, mid.
-    #[arg(long, value_delimiter = ',', value_parser = parse_input)]
-    pub inputs: Vec<Input>,
-    /// Precisions (comma-separated): f32, f64.
-    #[arg(long, value_delimiter = ',', value_parser = parse_precision)]
-    pub precision: Vec<Precision>,
-    /// Gyro sample rates in Hz (comma-separated).
-    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..))]
-    pub rates: Vec<u32>,
-    /// Seconds per run.
-    #[arg(long, value_parser = parse_positive)]
-    pub horizon: Option<f64>,
-}
-
-fn parse_steps(s: &str) -> Result<u64, String> {
-    let n: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    if (1e3..=1e12).contains(&n) {
-        Ok(n.round() as u64)
-    } else {
-        Err("a step count from 1e3 to 1e12".into())
-    }
-}
-
-fn parse_positive(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
-        _ => Err("a positive number of seconds".into()),
-    }
-}
-
-fn parse_scene(s: &str) -> Result<String, String> {
-    let keys: Vec<&str> = scenes::catalogue(0.0).iter().map(|c| c.key()).collect();
-    if keys.contains(&s) {
-        Ok(s.to_string())
-    } else {
-        Err(format!("unknown scene; one of {}", keys.join(", ")))
-    }
-}
-
-fn parse_scheme(s: &str) -> Result<SchemeKind, String> {
-    SchemeKind::ALL
-        .into_iter()
-        .find(|&m| configs::scheme_name(m).eq_ignore_ascii_case(s))
-        .ok_or_else(|| {
-            let names: Vec<&str> = SchemeKind::ALL
-                .iter()
-                .map(|&m| configs::scheme_name(m))
-                .collect();
-            format!("unknown scheme; one of {}", names.join(", "))
-        })
-}
-
-fn parse_stab(s: &str) -> Result<Stab, String> {
-    let bad = || "one of Off, Normalize, FirstOrder, EveryN, Baumgarte, Baumgarte=K".to_string();
-    Ok(match s {
-        "Off" => Stab::Off,
-        "Normalize" => Stab::Normalize,
-        "FirstOrder" => Stab::FirstOrder,
-        "Baumgarte" => Stab::Baumgarte(0.5),
-        _ => {
-            if let Some(n) = s.strip_prefix("Every") {
-                let n: u32 = n
-                    .trim_matches(|c| c == '(' || c == ')')
-                    .parse()
-                    .map_err(|_| bad())?;
-                if n == 0 {
-                    return Err("Every(0) is not a stabilizer".into());
-                }
-                Stab::Every(n)
-            } else {
-                let k: f64 = s
-                    .strip_prefix("Baumgarte=")
-                    .ok_or_else(bad)?
-                    .parse()
-                    .map_err(|_| bad())?;
-                Stab::Baumgarte(k)
-            }
+    /// After [`Invocation::run`]: writes the Markdown and checks every figure it links
+    /// ([`report::finish`]) and, after `report` (the lab report's README.md, not a study's page of its
+    /// own), the files against the registry ([`outputs::check`]); the failures.
+    pub fn finish(&self, ctx: &mut Ctx, command: &str) -> Vec<String> {
+        let mut failures = report::finish(ctx, command);
+        if self.subcommand().0 == "report" && !ctx.writes_page() {
+            failures.extend(outputs::check(ctx.out(), ctx.files(), studies::ALL));
         }
-    })
-}
-
-fn parse_input(s: &str) -> Result<Input, String> {
-    Input::ALL
-        .into_iter()
-        .find(|i| i.name() == s)
-        .ok_or_else(|| "one of hold, linear, history, mid".into())
-}
-
-fn parse_precision(s: &str) -> Result<Precision, String> {
-    match s {
-        "f32" => Ok(Precision::F32),
-        "f64" => Ok(Precision::F64),
-        _ => Err("f32 or f64".into()),
-    }
-}
-
-impl Horizon {
-    /// Steps at the default scale: four decades, the last two for the growth exponents.
-    pub const DEFAULT_STEPS: u64 = 10_000_000;
-
-    /// The step count: `--steps`, else by scale (`--long`: 1e9 unless `--quick`).
-    pub fn steps(&self, scale: Scale) -> u64 {
-        self.steps.unwrap_or(match scale {
-            Scale::Quick => 1_000_000,
-            _ if self.long => 1_000_000_000,
-            Scale::Default => Self::DEFAULT_STEPS,
-            Scale::Full => 100_000_000,
-        })
+        failures
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::args::{Horizon, Sweep};
+    use crate::configs::Stab;
+    use crate::table::Csv as _;
+    use crate::timing::StudyTimeRow;
+    use quatprop::scheme::SchemeKind;
+    use std::collections::BTreeSet;
 
     fn sweep_of(args: &[&str]) -> (Scale, Sweep) {
         let inv = parse_from(args).unwrap();
@@ -338,5 +212,59 @@ mod tests {
                 s.name()
             );
         }
+    }
+
+    /// The quick report, run in-process as `main` runs it: it passes its own [`check`], and the directory
+    /// holds exactly the files the registry declares (README.md and the optional files aside), every CSV
+    /// with rows.
+    #[test]
+    fn quick_report_writes_exactly_the_declared_files() {
+        let dir = std::env::temp_dir().join(format!("quatprop-lab-quick-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.to_str().unwrap();
+        let inv = parse_from(["quatprop-lab", "report", "--quick", "--out", out]).unwrap();
+        let mut ctx = Ctx::new(dir.clone(), inv.cli.scale());
+        inv.run(&mut ctx).unwrap();
+        let failures = inv.finish(&mut ctx, "report --quick");
+        assert!(failures.is_empty(), "{failures:?}");
+        let written: BTreeSet<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        let declared = outputs::declared(studies::ALL);
+        let mut expected: BTreeSet<String> = declared
+            .iter()
+            .filter(|(_, optional)| !optional)
+            .map(|(f, _)| f.clone())
+            .collect();
+        expected.extend(["README.md".to_string(), StudyTimeRow::FILE.to_string()]);
+        let optional: BTreeSet<String> = declared
+            .iter()
+            .filter(|(_, optional)| *optional)
+            .map(|(f, _)| f.clone())
+            .collect();
+        let extra: Vec<&String> = written
+            .difference(&expected)
+            .filter(|f| !optional.contains(*f))
+            .collect();
+        let missing: Vec<&String> = expected.difference(&written).collect();
+        assert!(extra.is_empty(), "written, not declared: {extra:?}");
+        assert!(missing.is_empty(), "declared, not written: {missing:?}");
+        for f in written.iter().filter(|f| f.ends_with(".csv")) {
+            let rows = outputs::csv_file(studies::ALL, f)
+                .unwrap()
+                .read_strict(&dir)
+                .unwrap();
+            assert!(rows > 0, "{f}: no rows");
+        }
+        let tables = outputs::check_tables(&dir, studies::ALL).unwrap_or_else(|e| panic!("{e}"));
+        assert!(tables >= 15, "{tables} tables");
+        // The check catches a missing file.
+        std::fs::remove_file(dir.join("time_base.png")).unwrap();
+        assert!(outputs::check(&dir, &[], studies::ALL)
+            .iter()
+            .any(|f| f.contains("time_base.png")));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

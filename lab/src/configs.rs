@@ -14,6 +14,8 @@
 //! sample of a stream). Each sample is one `Propagator::push`. Every step an integrator refuses is counted with
 //! its first error: nothing is dropped silently.
 
+use crate::peer_types::{ahrs_vec, from_ahrs, from_na, na_vec, to_ahrs, to_na, NaQuat, PeerReal};
+use crate::sample::Sample;
 use crate::{peer_loops, peers};
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config as LibConfig, Configured, InputKind, Visit};
@@ -33,13 +35,6 @@ pub fn is_runge_kutta(m: SchemeKind) -> bool {
         m,
         SchemeKind::Euler | SchemeKind::Rk2 | SchemeKind::Rk3 | SchemeKind::Rk4 | SchemeKind::Rk5
     )
-}
-
-/// One gyro sample of a stream: rate (rad/s, body frame) and the time since the previous sample (s).
-#[derive(Clone, Copy, Debug)]
-pub struct Sample<T> {
-    pub w: Vec3<T>,
-    pub dt: T,
 }
 
 /// The input model of a quatprop configuration: how the samples become a rate function for each step.
@@ -374,9 +369,9 @@ pub trait Integrator<T> {
     }
 }
 
-/// f32 and f64 as the lab needs them: quatprop's `Real` plus the peers' scalar types.
-/// (`nalgebra_ahrs::RealField`: the scalar trait of `ahrs`'s own nalgebra, a copy apart from the peers'.)
-pub trait LabReal: Real + nalgebra::RealField + nalgebra_ahrs::RealField + Copy {
+/// f32 and f64 as the lab needs them: the peers' scalars ([`PeerReal`]: quatprop's `Real` plus nalgebra's and
+/// `ahrs`'s), with each peer's integrator and plain loop in this precision.
+pub trait LabReal: PeerReal {
     /// The peer's integrator in this precision, if the peer has one.
     fn peer(p: Peer, q0: Quat<Self>, nominal_dt: Self) -> Option<Box<dyn Integrator<Self>>>;
     /// The peer's plain loop (`crate::peer_loops`) over a whole stream from `q0`: its attitude after the
@@ -691,34 +686,6 @@ impl Integrator<f64> for DGlamRun {
     }
 }
 
-type NaQuat<T> = nalgebra::UnitQuaternion<T>;
-
-// The conversions go through `mint` (quatprop's `mint` feature, nalgebra's `convert-mint`): component
-// order and the scalar's place are the crates' business, not the lab's.
-pub fn to_na<T: LabReal>(q: Quat<T>) -> NaQuat<T> {
-    NaQuat::new_normalize(nalgebra::Quaternion::from(mint::Quaternion::from(q)))
-}
-pub fn from_na<T: LabReal>(q: &NaQuat<T>) -> Quat<T> {
-    Quat::from_mint(*q.quaternion())
-}
-pub fn na_vec<T: LabReal>(v: Vec3<T>) -> nalgebra::Vector3<T> {
-    nalgebra::Vector3::from(mint::Vector3::from(v))
-}
-
-// `ahrs` 0.8 takes its own nalgebra's (0.34) types, a copy apart from the nalgebra peers' (lab/Cargo.toml):
-// converted component by component.
-type AhrsQuat<T> = nalgebra_ahrs::UnitQuaternion<T>;
-pub fn to_ahrs<T: LabReal>(q: Quat<T>) -> AhrsQuat<T> {
-    AhrsQuat::new_normalize(nalgebra_ahrs::Quaternion::new(q.w, q.x, q.y, q.z))
-}
-pub fn from_ahrs<T: LabReal>(q: &AhrsQuat<T>) -> Quat<T> {
-    let q = q.quaternion();
-    Quat::new(q.w, q.i, q.j, q.k)
-}
-pub fn ahrs_vec<T: LabReal>(v: Vec3<T>) -> nalgebra_ahrs::Vector3<T> {
-    nalgebra_ahrs::Vector3::new(v.x, v.y, v.z)
-}
-
 fn nalgebra_peer<T: LabReal>(
     p: Peer,
     q0: Quat<T>,
@@ -924,6 +891,42 @@ mod tests {
         assert_eq!(Quat::from_mint(n), q);
         let v = Vec3::new(1.0f64, 2.0, 3.0);
         assert_eq!(na_vec(v), nalgebra::Vector3::new(1.0, 2.0, 3.0));
+    }
+
+    /// Each peer wrapper, fed in pieces as the studies feed it, ends on its plain loop's attitude bit for bit,
+    /// in every precision the peer has, on a stream whose rates and steps are not round.
+    fn wrappers_match<T: LabReal>() {
+        let (samples, _) = crate::scene::stream::<T>(&crate::scenes::Coning, 1000, 0.7537);
+        let q0 = Quat::<T>::from_f64(Quat::from_rotation_vector(Vec3::new(0.3, -0.2, 0.1)));
+        let dt = samples[1].dt;
+        for p in Peer::ALL {
+            let Some(lp) = T::peer_loop(p, q0, dt, &samples) else {
+                assert!(Config::Peer(p).build::<T>(q0, dt).is_err(), "{p:?}");
+                continue;
+            };
+            let mut w = Config::Peer(p).build::<T>(q0, dt).unwrap();
+            for piece in [
+                &samples[..1],
+                &samples[1..2],
+                &samples[2..300],
+                &samples[300..],
+            ] {
+                w.feed(piece);
+            }
+            let mut l = Config::PeerLoop(p).build::<T>(q0, dt).unwrap();
+            l.feed(&samples[..123]);
+            l.feed(&samples[123..]);
+            let bits = |q: Quat<T>| q.to_f64();
+            assert_eq!(bits(w.attitude()), bits(lp), "{p:?} wrapper");
+            assert_eq!(bits(l.attitude()), bits(lp), "{p:?} loop fed in pieces");
+            assert_ne!(bits(lp), bits(q0), "{p:?} moved");
+        }
+    }
+
+    #[test]
+    fn wrappers_are_their_plain_loops_bit_for_bit() {
+        wrappers_match::<f32>();
+        wrappers_match::<f64>();
     }
 
     /// Baumgarte exists for the Runge–Kutta schemes only.

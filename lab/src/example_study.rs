@@ -4,7 +4,8 @@
 
 use crate::configs::{Config, Input, Stab};
 use crate::report::Ctx;
-use crate::scenes::{attitude_error, stream, Coning, Scene};
+use crate::scene::{attitude_error, stream, Scene};
+use crate::scenes::Coning;
 use crate::study::{CsvFile, Study};
 use crate::table::{self, Csv, Table};
 use quatprop::{scheme::SchemeKind, Quat};

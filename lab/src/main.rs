@@ -6,13 +6,17 @@
 //! `quatprop-lab help <command>`. `--quick` shrinks every study (CI checks that each one runs and writes
 //! its files), `--full` runs the sizes of record. lab/README.md says how to add a study.
 //!
-//! Layout: `studies/` holds one file per study and the registry (`studies/mod.rs`); `study.rs` says what a
-//! study is; `cli.rs`, `report.rs` and `outputs.rs` are the command line, the report being written and the
-//! check of its files; the rest is what studies share: configurations and peers (`configs.rs`, `peers.rs`,
-//! `peer_loops.rs`), scenes and their exact references (`scenes.rs`, `rigid_body.rs`, `dd.rs`,
-//! `recorded.rs`), unchecked steps (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`,
+//! Layout, top to bottom (each file uses only the files after it; lab/README.md has the table): `cli.rs`
+//! (the command line), `studies/mod.rs` (the registry), `studies/` (one file per study), `outputs.rs` (the
+//! files a report writes, and their checks), `study.rs` (what a study is), `args.rs` (arguments the studies
+//! share) and `report.rs` (the report being written); what studies share: configurations and peers
+//! (`configs.rs`, `peer_loops.rs`, `peers.rs`, `peer_types.rs`); scenes and their exact references
+//! (`scenes.rs`: the synthetic ones and the catalogue; `rigid_body.rs`, `recorded.rs`; `scene.rs`: what a
+//! scene is; `sample.rs`: a stream's sample); and the leaves: the scale (`scale.rs`), double-double time
+//! (`dd.rs`), unchecked steps (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`,
 //! `timing.rs`), CSV and tables (`table.rs`) and plots (`plot.rs`).
 
+mod args;
 mod cli;
 mod configs;
 mod dd;
@@ -20,6 +24,7 @@ mod dd;
 mod example_study;
 mod outputs;
 mod peer_loops;
+mod peer_types;
 mod peers;
 mod plot;
 mod quiet;
@@ -27,6 +32,9 @@ mod recorded;
 mod report;
 mod rigid_body;
 mod rng;
+mod sample;
+mod scale;
+mod scene;
 mod scenes;
 mod studies;
 mod study;
@@ -47,7 +55,7 @@ fn main() {
     }
     ctx.clear_progress();
     let command = std::env::args().skip(1).collect::<Vec<_>>().join(" ");
-    let failures = report::finish(&mut ctx, &command, inv.subcommand().0 == "report");
+    let failures = inv.finish(&mut ctx, &command);
     if failures.is_empty() {
         eprintln!("written to {}/{}", out.display(), ctx.markdown_file());
     } else {

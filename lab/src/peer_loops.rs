@@ -1,12 +1,13 @@
 //! Each peer as its users write it: one plain loop over a stream, the peer's state in a local, the peer's
 //! call once per sample. The lab's peer wrappers (`configs.rs`, fed piece by piece through `Integrator`)
-//! must give these loops' attitudes bit for bit (tests below) and cost what they cost: the work-precision
+//! must give these loops' attitudes bit for bit (tested there) and cost what they cost: the work-precision
 //! headline times each loop beside its wrapper in the same sweep (table `work_precision_peer_loops.csv`).
 //!
 //! A stream's first sample only starts it (its interval is not integrated), as in the wrappers.
 
-use crate::configs::{ahrs_vec, from_ahrs, from_na, na_vec, to_ahrs, to_na, LabReal, Sample};
+use crate::peer_types::{ahrs_vec, from_ahrs, from_na, na_vec, to_ahrs, to_na, PeerReal};
 use crate::peers;
+use crate::sample::Sample;
 use quatprop::{Quat, Vec3};
 
 /// Fusion: `fusion_euler` per sample (the newest sample over its interval).
@@ -19,7 +20,7 @@ pub fn fusion(q0: Quat<f32>, samples: &[Sample<f32>]) -> Quat<f32> {
 }
 
 /// `ahrs`: `Madgwick::update_gyro` per sample (its fixed `sample_period`; the sample's dt is not used).
-pub fn ahrs_madgwick<T: LabReal>(q0: Quat<T>, sample_period: T, samples: &[Sample<T>]) -> Quat<T> {
+pub fn ahrs_madgwick<T: PeerReal>(q0: Quat<T>, sample_period: T, samples: &[Sample<T>]) -> Quat<T> {
     use ahrs::Ahrs as _;
     let mut madgwick = ahrs::Madgwick::new_with_quat(sample_period, T::ZERO, to_ahrs(q0));
     for s in samples.iter().skip(1) {
@@ -29,7 +30,7 @@ pub fn ahrs_madgwick<T: LabReal>(q0: Quat<T>, sample_period: T, samples: &[Sampl
 }
 
 /// nalgebra: classic RK4 on `q' = ½ q ⊗ (0, ω)` with linear rates, then `UnitQuaternion::new_normalize`.
-pub fn nalgebra_rk4<T: LabReal>(q0: Quat<T>, samples: &[Sample<T>]) -> Quat<T> {
+pub fn nalgebra_rk4<T: PeerReal>(q0: Quat<T>, samples: &[Sample<T>]) -> Quat<T> {
     let half = T::HALF;
     let (two, six) = (T::TWO, <T as quatprop::Real>::from_f64(6.0));
     let f = |y: &nalgebra::Quaternion<T>, w: Vec3<T>| {
@@ -52,7 +53,7 @@ pub fn nalgebra_rk4<T: LabReal>(q0: Quat<T>, samples: &[Sample<T>]) -> Quat<T> {
 }
 
 /// nalgebra: `q *= UnitQuaternion::from_scaled_axis(ω̄ dt)` on the trapezoid mean rate.
-pub fn nalgebra_scaled_axis<T: LabReal>(q0: Quat<T>, samples: &[Sample<T>]) -> Quat<T> {
+pub fn nalgebra_scaled_axis<T: PeerReal>(q0: Quat<T>, samples: &[Sample<T>]) -> Quat<T> {
     let mut q = to_na(q0);
     for pair in samples.windows(2) {
         let v = (pair[0].w + pair[1].w) * (T::HALF * pair[1].dt);
@@ -85,47 +86,8 @@ pub fn dglam_scaled_axis(q0: Quat<f64>, samples: &[Sample<f64>]) -> Quat<f64> {
 
 #[cfg(test)]
 mod tests {
-    use crate::configs::{Config, LabReal, Peer, Sample};
-    use crate::scenes::{stream, Coning};
+    use crate::sample::Sample;
     use quatprop::Quat;
-
-    /// Each wrapper, fed in pieces as the studies feed it, ends on its plain loop's attitude bit for bit,
-    /// in every precision the peer has, on a stream whose rates and steps are not round.
-    fn wrappers_match<T: LabReal>() {
-        let (samples, _) = stream::<T>(&Coning, 1000, 0.7537);
-        let q0 = Quat::<T>::from_f64(quatprop::Quat::from_rotation_vector(quatprop::Vec3::new(
-            0.3, -0.2, 0.1,
-        )));
-        let dt = samples[1].dt;
-        for p in Peer::ALL {
-            let Some(lp) = T::peer_loop(p, q0, dt, &samples) else {
-                assert!(Config::Peer(p).build::<T>(q0, dt).is_err(), "{p:?}");
-                continue;
-            };
-            let mut w = Config::Peer(p).build::<T>(q0, dt).unwrap();
-            for piece in [
-                &samples[..1],
-                &samples[1..2],
-                &samples[2..300],
-                &samples[300..],
-            ] {
-                w.feed(piece);
-            }
-            let mut l = Config::PeerLoop(p).build::<T>(q0, dt).unwrap();
-            l.feed(&samples[..123]);
-            l.feed(&samples[123..]);
-            let bits = |q: Quat<T>| q.to_f64();
-            assert_eq!(bits(w.attitude()), bits(lp), "{p:?} wrapper");
-            assert_eq!(bits(l.attitude()), bits(lp), "{p:?} loop fed in pieces");
-            assert_ne!(bits(lp), bits(q0), "{p:?} moved");
-        }
-    }
-
-    #[test]
-    fn wrappers_are_their_plain_loops_bit_for_bit() {
-        wrappers_match::<f32>();
-        wrappers_match::<f64>();
-    }
 
     /// A plain loop over a one-sample stream does nothing (the first sample only starts).
     #[test]

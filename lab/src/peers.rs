@@ -1,7 +1,7 @@
 //! Fusion (a C library): its gyroscope update, implemented here from its published source (FusionAhrs.c).
-//! The Rust peers (`ahrs`, `nalgebra`, `glam`) are used as crates (`crate::configs`). Fusion's bias
-//! estimator runs as its own code (imufusion) in python/benchmarks/bias.py. f32; rates in rad/s, body
-//! frame, `q ← q ⊗ (…)`.
+//! The Rust peers (`ahrs`, `nalgebra`, `glam`) are used as crates (`crate::configs`, their types converted
+//! in `crate::peer_types`). Fusion's bias estimator runs as its own code (imufusion) in
+//! python/benchmarks/bias.py. f32; rates in rad/s, body frame, `q ← q ⊗ (…)`.
 
 use quatprop::{Quat, Vec3};
 

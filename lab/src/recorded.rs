@@ -9,7 +9,7 @@
 //! Data: D. Laidig, M. Caruso, A. Cereatti, T. Seel. BROAD — A Benchmark for Robust Inertial Orientation
 //! Estimation. Data 6(7):72, 2021. doi:10.3390/data6070072. github.com/dlaidig/broad (CC BY 4.0).
 
-use crate::scenes::{gauss_step, Scene, Sweep, DEFAULT_SWEEP};
+use crate::scene::{gauss_step, Scene, Sweep, DEFAULT_SWEEP};
 use quatprop::input::GaussPoints;
 use quatprop::scheme::Magnus4;
 use quatprop::stabilize::Normalize;

@@ -1,8 +1,10 @@
 //! The report being written: [`Ctx`] (output directory, scale, progress, the sections so far, their times,
 //! failures) and [`finish`], which writes `README.md` from the sections and checks every figure it links.
+//! The check of a whole report's files against the registry (`outputs::check`) runs after it, from the
+//! command line (`Invocation::finish`).
 
 use crate::quiet::Quiet;
-use crate::study::Scale;
+use crate::scale::Scale;
 use crate::table;
 use crate::timing::{self, StudyTimeRow};
 use std::path::{Path, PathBuf};
@@ -71,6 +73,21 @@ impl Ctx {
         self.page.as_deref().unwrap_or("README.md")
     }
 
+    /// Whether a study asked for a page of its own ([`Ctx::page`]) instead of the report's `README.md`.
+    pub fn writes_page(&self) -> bool {
+        self.page.is_some()
+    }
+
+    /// The output directory.
+    pub fn out(&self) -> &Path {
+        &self.out
+    }
+
+    /// The CSV files written so far.
+    pub fn files(&self) -> &[String] {
+        &self.files
+    }
+
     /// Runs one timed part of a study (a row of the run-time table, `name`) whose Markdown `f` returns; the
     /// Markdown becomes the report's next section.
     pub fn section(&mut self, name: &str, f: impl FnOnce(&mut Ctx) -> String) {
@@ -133,9 +150,9 @@ impl Ctx {
     }
 }
 
-/// Writes `README.md` from the sections and checks that every figure they link exists, and for a whole
-/// report (`all_studies`) the files against the registry (`outputs::check`); the failures.
-pub fn finish(ctx: &mut Ctx, command: &str, all_studies: bool) -> Vec<String> {
+/// Writes `README.md` (or the page a study asked for) from the sections and checks that every figure they
+/// link exists; the failures so far.
+pub fn finish(ctx: &mut Ctx, command: &str) -> Vec<String> {
     let out = ctx.out.clone();
     let times = std::mem::take(&mut ctx.times);
     let sections = std::mem::take(&mut ctx.sections);
@@ -173,10 +190,6 @@ pub fn finish(ctx: &mut Ctx, command: &str, all_studies: bool) -> Vec<String> {
         ctx.failures.push(format!("README.md: {e}"));
     }
     check_figures(ctx, &out, &sections);
-    if all_studies {
-        let files = ctx.files.clone();
-        ctx.failures.extend(crate::outputs::check(&out, &files));
-    }
     ctx.failures.clone()
 }
 

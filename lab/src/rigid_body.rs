@@ -3,7 +3,7 @@
 //! Both are validated here, not trusted: the rate against Euler's equations, the attitude against the rate
 //! (2 q* ⊗ q' = ω) and against a tight-step fourth-order propagation.
 
-use crate::scenes::Scene;
+use crate::scene::Scene;
 use quatprop::{Quat, Vec3};
 
 /// 5-point Gauss–Legendre nodes and weights on [−1, 1].
@@ -339,7 +339,7 @@ mod tests {
             assert!((omega.vector() - w).norm() < 1e-6, "t={t}");
         }
         // Against a tight Magnus-4 propagation through the first flip.
-        use crate::scenes::gauss_step;
+        use crate::scene::gauss_step;
         use quatprop::input::GaussPoints;
         use quatprop::scheme::Magnus4;
         use quatprop::stabilize::Normalize;
@@ -359,7 +359,7 @@ mod tests {
 
     #[test]
     fn reference_agrees_with_a_tight_fourth_order_propagation() {
-        use crate::scenes::gauss_step;
+        use crate::scene::gauss_step;
         use quatprop::input::GaussPoints;
         use quatprop::scheme::Magnus4;
         use quatprop::stabilize::Normalize;

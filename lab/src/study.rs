@@ -5,37 +5,13 @@
 //! A study declares its sub-command (name, one-line description, clap arguments), the files it writes (its
 //! CSV files with their row types, its figures) and runs through a [`Ctx`]: `ctx.section(name, ...)` times one
 //! part and adds its Markdown to the report, `ctx.table` / `ctx.rows` write CSV, `ctx.plot` writes a figure,
-//! and `ctx.scale` says how big to make it ([`Scale`]).
+//! and `ctx.scale` says how big to make it (`Scale`).
 
-use crate::cli::ReportArgs;
+use crate::args::ReportArgs;
 use crate::report::Ctx;
 use crate::table::{self, Csv, Table};
 use clap::{ArgMatches, Args, FromArgMatches};
 use std::path::Path;
-
-/// How big every study makes its grids and horizons.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Scale {
-    /// `--quick`: seconds per study; CI checks that every study runs and writes every file.
-    Quick,
-    /// No flag: every figure at a resolution that shows its point; the whole report, build included, in
-    /// minutes (lab/README.md has the measured times).
-    #[default]
-    Default,
-    /// `--full`: the sizes of record (docs/report).
-    Full,
-}
-
-impl Scale {
-    /// The value for this scale.
-    pub fn pick<T>(self, quick: T, default: T, full: T) -> T {
-        match self {
-            Scale::Quick => quick,
-            Scale::Default => default,
-            Scale::Full => full,
-        }
-    }
-}
 
 /// The arguments of a study that has none.
 #[derive(Args, Debug, Clone, Default)]
@@ -170,82 +146,5 @@ impl<S: Study> AnyStudy for S {
     }
     fn figures(&self) -> Vec<String> {
         Study::figures(self)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::example_study::InputModels;
-
-    const README: &str = include_str!("../README.md");
-
-    /// lab/README.md's example is `example_study.rs` from its first `use` on, verbatim.
-    #[test]
-    fn readme_example_is_the_example_study() {
-        let file = include_str!("example_study.rs");
-        let code = &file[file.find("use ").unwrap()..];
-        let block = README
-            .split("```rust\n")
-            .nth(1)
-            .and_then(|b| b.split("```\n").next())
-            .expect("a rust block in lab/README.md");
-        assert_eq!(
-            block, code,
-            "lab/README.md's example against src/example_study.rs"
-        );
-    }
-
-    /// lab/README.md lists every registered study with its sub-command and one-line description.
-    #[test]
-    fn readme_lists_every_study() {
-        for s in crate::studies::ALL {
-            let line = format!("| `{}` | {} |", s.name(), s.about());
-            assert!(
-                README.contains(&line),
-                "lab/README.md lacks the line {line}"
-            );
-        }
-    }
-
-    /// The example runs as a registered study would: from its sub-command's arguments and in a report
-    /// (its defaults), writing the files it declares, which read back strictly.
-    #[test]
-    fn the_example_study_runs_like_a_registered_one() {
-        let dir = std::env::temp_dir().join(format!("quatprop-lab-example-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let study: &dyn AnyStudy = &InputModels;
-        let matches = study
-            .command()
-            .try_get_matches_from(["example-inputs", "--rate", "500"])
-            .unwrap();
-        let mut ctx = Ctx::new(dir.clone(), Scale::Quick);
-        study.run_matches(&mut ctx, &matches).unwrap();
-        let failures = crate::report::finish(&mut ctx, "example-inputs --quick", false);
-        assert!(failures.is_empty(), "{failures:?}");
-        let md = std::fs::read_to_string(dir.join("README.md")).unwrap();
-        assert!(md.contains("500 Hz, 1.37 s."), "{md}");
-        for c in study.csv() {
-            assert_eq!(c.read_strict(&dir), Ok(4), "{}", c.file);
-            assert!(md.contains(&c.render(&dir).unwrap().unwrap()));
-        }
-        let mut ctx = Ctx::new(dir.clone(), Scale::Quick);
-        study.run_in_report(&mut ctx, &ReportArgs::default());
-        crate::report::finish(&mut ctx, "report --quick", false);
-        let md = std::fs::read_to_string(dir.join("README.md")).unwrap();
-        assert!(
-            md.contains("1000 Hz, 1.37 s."),
-            "the sub-command's default rate: {md}"
-        );
-        let _ = std::fs::remove_dir_all(&dir);
-    }
-
-    #[test]
-    fn scale_picks_its_value() {
-        assert_eq!(Scale::Quick.pick(1, 2, 3), 1);
-        assert_eq!(Scale::Default.pick(1, 2, 3), 2);
-        assert_eq!(Scale::Full.pick(1, 2, 3), 3);
-        assert_eq!(Scale::default(), Scale::Default);
     }
 }

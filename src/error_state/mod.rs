@@ -68,4 +68,3 @@ mod step;
 /// identified from a recording).
 pub use crate::noise::GyroNoise;
 pub use step::{ProcessNoise, Step, Transition};
-pub(crate) use step::{SERIES_TERMS, STEP_SERIES};

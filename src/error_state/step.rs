@@ -1,6 +1,7 @@
 //! The closed-form transition and process noise of one interval (see the module documentation).
 
 use super::GyroNoise;
+use crate::real::sealed::F64Table;
 use crate::{Error, Quat, Real, Vec3};
 
 /// A 3 × 3 matrix by rows.
@@ -63,11 +64,18 @@ struct Coefficients<T> {
 /// digit to cancellation beyond it).
 const SERIES_MAX_SQ: f64 = 4.0;
 /// Terms of each series: the last term of the slowest (`sin x / x` at `x = 2`) is `2²⁶/27!`, 6e-21.
-pub(crate) const SERIES_TERMS: usize = 14;
+const SERIES_TERMS: usize = 14;
+
+/// The five series' coefficients as a table each type rounds once, at compile time (`Float::rounded`).
+struct StepSeries;
+
+impl F64Table<5, SERIES_TERMS> for StepSeries {
+    const F64: [[f64; SERIES_TERMS]; 5] = STEP_SERIES;
+}
 
 /// The coefficients `m (−1)ᵏ / (2k + p)!` of the five series, `(p, m)` = (1, 1), (2, 1), (3, 1), (4, 1),
-/// (5, 2), computed at compile time (each type rounds them once: `Float::STEP_SERIES`).
-pub(crate) const STEP_SERIES: [[f64; SERIES_TERMS]; 5] = {
+/// (5, 2), computed at compile time.
+const STEP_SERIES: [[f64; SERIES_TERMS]; 5] = {
     let mut out = [[0.0; SERIES_TERMS]; 5];
     let mut f = 0;
     while f < 5 {
@@ -102,7 +110,7 @@ fn series<T: Real>(x2: T, c: &[T; SERIES_TERMS]) -> T {
 impl<T: Real> Coefficients<T> {
     fn of(x2: T) -> Self {
         if x2 <= T::from_f64(SERIES_MAX_SQ) {
-            let [s1, c1, c2, c3, c4] = &T::STEP_SERIES;
+            let [s1, c1, c2, c3, c4] = T::rounded::<StepSeries, 5, SERIES_TERMS>();
             Self {
                 s1: series(x2, s1),
                 c1: series(x2, c1),

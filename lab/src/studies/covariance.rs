@@ -67,7 +67,7 @@ impl Study for Covariance {
     fn figures(&self) -> Vec<String> {
         vec!["covariance".into()]
     }
-    fn report_args(&self, _report: &crate::cli::ReportArgs) -> Args {
+    fn report_args(&self, _report: &crate::args::ReportArgs) -> Args {
         Args {
             steps: None,
             page: false,

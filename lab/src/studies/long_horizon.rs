@@ -22,7 +22,7 @@ use crate::configs::scheme_name;
 use crate::dd;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, cell, sci, Csv, Table};
-use crate::cli::{Horizon, ReportArgs};
+use crate::args::{Horizon, ReportArgs};
 use crate::report::Ctx;
 use crate::study::{CsvFile, Study};
 use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};

@@ -3,7 +3,8 @@
 
 use crate::configs::{error_kind, scheme_set, Config};
 use crate::report::Ctx;
-use crate::scenes::{self, attitude_error, stream, Scene};
+use crate::scene::{attitude_error, stream, Scene};
+use crate::scenes;
 use crate::study::{CsvFile, NoArgs, Study};
 use crate::table::{cell, Csv, Table};
 use quatprop::Quat;

@@ -4,11 +4,13 @@
 //! adds). The stream's exact integral: the cubic through the four samples around each interval at their true
 //! times, integrated in f64 by Magnus-4 with 16 substeps per sample interval (checked against 8 in the report).
 
-use crate::configs::{Config, Input, Peer, Sample, Stab};
-use crate::cli::Sweep;
+use crate::configs::{Config, Input, Peer, Stab};
+use crate::args::Sweep;
 use crate::report::Ctx;
 use crate::rng::Rng;
-use crate::scenes::{self, attitude_error, gauss_step, Scene};
+use crate::sample::Sample;
+use crate::scene::{attitude_error, gauss_step, Scene};
+use crate::scenes;
 use crate::study::{CsvFile, Study};
 use crate::table::{cell, Csv, Table};
 use quatprop::input::GaussPoints;

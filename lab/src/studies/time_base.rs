@@ -6,9 +6,9 @@
 use crate::dd;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, sci, Csv, Table};
-use crate::cli::{Horizon, ReportArgs};
+use crate::args::{Horizon, ReportArgs};
 use crate::report::Ctx;
-use crate::scenes::attitude_error;
+use crate::scene::attitude_error;
 use crate::study::{CsvFile, Study};
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::Hold;

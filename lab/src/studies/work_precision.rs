@@ -7,14 +7,16 @@
 //! (`firmware/bench-m4f.csv`, written by `python3 firmware/figures.py`). The f32 arithmetic is bit-identical
 //! on the M4F and the host (tests/firmware_snapshot.rs), so the host's error is the target's error.
 
-use crate::cli::Sweep;
+use crate::args::Sweep;
 use crate::configs::{
     error_kind, full_grid, scheme_name, scheme_set, Acc, Config, Input, LabReal, Peer, Precision, Stab,
 };
 use crate::plot::{plot, Axis, Series};
 use crate::report::Ctx;
-use crate::scenes::{self, attitude_error, stream, Scene};
-use crate::study::{CsvFile, Scale, Study};
+use crate::scene::{attitude_error, stream, Scene};
+use crate::scenes;
+use crate::scale::Scale;
+use crate::study::{CsvFile, Study};
 use crate::table::{self, cell, Csv, Table};
 use quatprop::scheme::SchemeKind;
 use quatprop::{Error, Quat};
