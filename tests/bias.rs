@@ -536,3 +536,32 @@ fn the_motion_bias_is_learned_from_gravity_while_the_body_turns() {
     assert_eq!(m.bias(), Vec3::ZERO);
     assert_eq!(MotionBias::<f32>::new(0.0), Err(Error::NonPositiveStep));
 }
+
+/// A first still window quieter than the sensor (its block scatter a sixth of the truth, as one draw in a
+/// hundred gives): the scatter at rest learned from it alone would fail every later window's flatness
+/// test, and nothing would be learned again. The later windows are tested against the F bound of a scatter
+/// learned from so few windows, pass, and teach it better: every window after the first is learned.
+#[test]
+fn a_quiet_first_window_does_not_lock_the_estimator_out() {
+    let b0 = Vec3::new(0.6, -0.4, 0.25) * DEG;
+    let mut noise = Noise(31);
+    let sigma = 0.1 * DEG;
+    let samples: Vec<GyroSample<f32>> = (0..30_000)
+        .map(|k| {
+            let s = if k < 1000 { sigma * 0.4 } else { sigma };
+            let n = Vec3::new(noise.next(), noise.next(), noise.next()) * s;
+            GyroSample::new(Vec3::<f32>::from_f64(b0 + n))
+        })
+        .collect();
+    let mut est = default_estimator();
+    let mut learned = Vec::new();
+    for (k, s) in samples.iter().enumerate() {
+        est.update(*s).unwrap();
+        if (k + 1) % 1000 == 0 {
+            learned.push(est.last_window().map(|w| w.0));
+        }
+    }
+    // The number of windows taken counts up by one at every window's end.
+    let counts: Vec<u32> = learned.iter().map(|c| c.unwrap_or(0)).collect();
+    assert_eq!(counts, (1..=30).collect::<Vec<u32>>(), "{counts:?}");
+}

@@ -282,6 +282,17 @@ fn disagrees<T: Real>(d: Vec3<T>, v: Vec3<T>) -> bool {
 /// The χ² bound a block scatter (7 degrees of freedom) or a step's residual (5 or 6) must stay under, per
 /// axis: the 1 − 10⁻⁴ quantiles.
 const FLAT_CHI2: f64 = 29.88;
+/// The bound on a block scatter's ratio to a scatter at rest that was itself learned from `k` windows
+/// (`7k` degrees of freedom): the 1 − 10⁻⁴ quantile of F(7, 7k), k = 1 … 64 (scipy.stats.f.ppf). A scatter
+/// learned from one window may be a fifth of the truth; tested against χ²'s bound alone, the next windows
+/// would fail and never teach it better.
+const FLAT_F: [f64; 64] = [
+    30.477, 10.924, 7.901, 6.745, 6.143, 5.774, 5.526, 5.348, 5.214, 5.110, 5.026, 4.957, 4.900,
+    4.851, 4.810, 4.774, 4.742, 4.714, 4.690, 4.667, 4.647, 4.629, 4.613, 4.598, 4.584, 4.572,
+    4.560, 4.549, 4.539, 4.530, 4.521, 4.513, 4.505, 4.498, 4.491, 4.485, 4.479, 4.473, 4.468,
+    4.463, 4.458, 4.453, 4.449, 4.445, 4.441, 4.437, 4.433, 4.430, 4.426, 4.423, 4.420, 4.417,
+    4.414, 4.411, 4.409, 4.406, 4.404, 4.401, 4.399, 4.397, 4.395, 4.393, 4.391, 4.389,
+];
 const STEP_CHI2: [f64; 2] = [25.74, 27.86];
 /// The exponential memory (windows) of the pooled scatter at rest and of the bias(T) line.
 const MEMORY: f64 = 64.0;
@@ -821,10 +832,13 @@ impl<T: Real> BiasEstimator<T> {
                 (q - s * s / n).max(T::ZERO) / (n - T::ONE)
             })
         });
-        let flat_gyro =
-            !tested || self.rest_dof == T::ZERO || self.is_flat(scatter, self.rest_scatter);
+        let flat_gyro = !tested
+            || self.rest_dof == T::ZERO
+            || self.is_flat(scatter, self.rest_scatter, self.rest_dof);
         let flat_accel = match accel {
-            Some(a) => self.accel_dof == T::ZERO || self.is_flat(a, self.accel_scatter),
+            Some(a) => {
+                self.accel_dof == T::ZERO || self.is_flat(a, self.accel_scatter, self.accel_dof)
+            }
             None => true,
         };
         // The variance of the window's mean: a mean of its blocks, with the scatter at rest (this
@@ -902,9 +916,17 @@ impl<T: Real> BiasEstimator<T> {
         temperature.map_or(self.bias, |t| self.bias_at(t))
     }
 
-    /// Whether a scatter of block means (7 degrees of freedom) is within the bound of a scatter at rest.
-    fn is_flat(&self, scatter: Vec3<T>, rest: Vec3<T>) -> bool {
-        let bound = T::from_f64(FLAT_CHI2 / (BLOCKS - 1) as f64);
+    /// Whether a scatter of block means (7 degrees of freedom) is within the bound of a scatter at rest
+    /// known with `dof` degrees of freedom (`T::MAX`: given by the noise model).
+    fn is_flat(&self, scatter: Vec3<T>, rest: Vec3<T>, dof: T) -> bool {
+        let bound = if dof == T::MAX {
+            T::from_f64(FLAT_CHI2 / (BLOCKS - 1) as f64)
+        } else {
+            // Windows behind the scatter: dof/7, at least one, at most the table's 64.
+            let k = (dof * T::from_f64(1.0 / (BLOCKS - 1) as f64)).to_i32();
+            let k = usize::try_from(k).unwrap_or(1).clamp(1, FLAT_F.len());
+            T::from_f64(FLAT_F.get(k - 1).copied().unwrap_or(FLAT_F[0]))
+        };
         let ok = |s: T, r: T| s <= bound * r;
         ok(scatter.x, rest.x) && ok(scatter.y, rest.y) && ok(scatter.z, rest.z)
     }
