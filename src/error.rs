@@ -59,7 +59,8 @@ pub enum Error {
     TimestampNotIncreasing,
     /// A clock's counter width is outside 1–32 bits.
     InvalidClock,
-    /// A bias estimator's window or memory is zero, or its stillness gate is not finite and positive.
+    /// A bias estimator's window holds no sample or more than 2³¹ − 1, or a period, gate, span or initial
+    /// sigma is not finite and positive, or a drift is negative or not finite.
     InvalidEstimator,
     /// A gyro calibration has a number that is not finite, or its matrix `M · diag(sensitivity)` is
     /// singular or worse conditioned than [`crate::frontend::Calibration::CONDITION_LIMIT`].
@@ -111,7 +112,7 @@ impl fmt::Display for Error {
             }
             Error::InvalidClock => f.write_str("clock counter width must be 1 to 32 bits"),
             Error::InvalidEstimator => f.write_str(
-                "bias estimator: window and memory must be 1 to 2^31-1, the gates, change and span positive",
+                "bias estimator: the window must hold 1 to 2^31-1 samples, the period, gates, span and sigma be positive and finite, the drifts finite and not negative",
             ),
             Error::InvalidCalibration => f.write_str(
                 "gyro calibration: a number is not finite, or M*diag(sensitivity) is singular or ill-conditioned",

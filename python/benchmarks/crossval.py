@@ -10,7 +10,7 @@ on data it has not seen.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Dict, Hashable, List, Sequence
+from typing import Callable, Dict, Hashable, List, Sequence
 
 import numpy as np
 
@@ -49,15 +49,34 @@ class Result:
 
 
 def leave_one_out(scores: Dict[Hashable, Dict[str, float]], trials: Sequence[str]) -> Result:
-    """`scores[setting][trial]`: a lower-is-better score per trial (NaN: the setting failed there, never
-    chosen by a fold that sees it). Ties go to the first setting in `scores`' order."""
-    settings = list(scores)
-    table = np.array([[scores[s][t] for t in trials] for s in settings], dtype=float)
-    table = np.where(np.isfinite(table), table, np.inf)
-    best_all = int(np.argmin(table.mean(axis=1)))
+    """`scores[setting][trial]`: a lower-is-better score per trial, the objective their mean (NaN: the
+    setting failed there, never chosen by a fold that sees it). Ties go to the first setting in `scores`'
+    order."""
+
+    def objective(setting: Hashable, training: Sequence[str]) -> float:
+        values = np.array([scores[setting][t] for t in training], dtype=float)
+        return float(np.mean(values)) if np.all(np.isfinite(values)) else np.inf
+
+    return leave_one_out_by(list(scores), trials, objective, lambda s, t: float(scores[s][t]))
+
+
+def leave_one_out_by(
+    settings: Sequence[Hashable],
+    trials: Sequence[str],
+    objective: Callable[[Hashable, Sequence[str]], float],
+    score: Callable[[Hashable, str], float],
+) -> Result:
+    """The general form: `objective(setting, training_trials)` (lower is better; `inf`: not admissible
+    on those trials) chooses; `score(setting, trial)` is what is reported for a trial."""
+    trials = list(trials)
+
+    def choose(training: Sequence[str]) -> Hashable:
+        values = [objective(s, training) for s in settings]
+        return settings[int(np.argmin(values))]
+
+    best_all = choose(trials)
     choices = []
     for k, t in enumerate(trials):
-        others = np.delete(table, k, axis=1).mean(axis=1)
-        pick = int(np.argmin(others))
-        choices.append(Choice(t, settings[pick], float(table[pick, k]), float(table[best_all, k])))
-    return Result(choices, settings[best_all])
+        pick = choose(trials[:k] + trials[k + 1:])
+        choices.append(Choice(t, pick, score(pick, t), score(best_all, t)))
+    return Result(choices, best_all)

@@ -101,7 +101,7 @@ def main(argv=None) -> int:
     names = [t.name for t in trials]
     progress(f"{len(trials)} trials")
 
-    noise = noise_table(trials) if hasattr(quatprop, "allan") else []
+    noise = noise_table(trials)
     progress(f"noise identified ({time.time() - t0:.0f} s)")
 
     grid = list(itertools.product(DRIFTS, DELAYS, MOTION))

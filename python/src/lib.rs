@@ -23,7 +23,7 @@ use quatprop::frontend::{
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
-use quatprop::noise::GyroNoise;
+use quatprop::noise::{AllanVariance, GyroNoise, NoiseFit, Term};
 use quatprop::scheme::{ExpMap, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Stabilizer, StabilizerKind};
 use quatprop::{
@@ -344,20 +344,20 @@ impl<T: Real> Session<T> {
             (None, None) => (None, None),
             (Some(b), None) => (Some(FixedBias::new(vec3(b)).map_err(config_error)?), None),
             (None, Some(e)) => {
-                // The estimator's sample period: its own, else the stream's fixed period or tick.
-                let period = e
-                    .period
-                    .or(args.period)
-                    .or(args.tick_hz.map(|hz| 1.0 / hz))
-                    .ok_or_else(|| {
-                        PyValueError::new_err(
-                            "BiasEstimator needs a sample period: give the stream dt= or BiasEstimator(period=...)",
-                        )
-                    })?;
+                // The estimator's sample period: its own, else the stream's fixed period (a tick clock's
+                // frequency is its counter's, not the sample rate: give the period then).
+                let period = e.period.or(args.period).ok_or_else(|| {
+                    PyValueError::new_err(
+                        "BiasEstimator needs a sample period: give the stream dt= or BiasEstimator(period=...)",
+                    )
+                })?;
                 let mut est = BiasEstimator::new(e.window, period, T::from_f64(e.gate))
                     .map_err(config_error)?;
                 if let Some(d) = e.drift {
                     est = est.with_drift(T::from_f64(d)).map_err(config_error)?;
+                }
+                if let Some(d) = e.rest_drift {
+                    est = est.with_rest_drift(T::from_f64(d)).map_err(config_error)?;
                 }
                 if let Some(n) = e.noise {
                     let noise = GyroNoise::new(T::from_f64(n), T::ZERO).map_err(config_error)?;
@@ -592,7 +592,8 @@ struct StreamArgs {
 }
 
 /// A bias estimator as Python passes it (`quatprop.BiasEstimator`): the window (s), the gate (rad/s), the
-/// sample period (s; None: the stream's), the drift (rad/s/√s; None: the core's default), the white noise
+/// sample period (s; None: the stream's), the drift and the rest drift (rad/s/√s; None: the core's
+/// defaults), the white noise
 /// density (rad/√s; None: the scatter at rest is learned), an initial bias (rad/s) with its standard
 /// deviation, an acceleration gate, a temperature span, and whether the residual bias is also learned in
 /// motion from the accelerometer (`MotionBias`).
@@ -602,6 +603,7 @@ struct EstimatorArgs {
     gate: f64,
     period: Option<f64>,
     drift: Option<f64>,
+    rest_drift: Option<f64>,
     noise: Option<f64>,
     initial: Option<([f64; 3], f64)>,
     accel_gate: Option<f64>,
@@ -1193,6 +1195,86 @@ euler_fns!(
     f64
 );
 
+/// One noise term of a fit as Python gets it: the density, the coefficient and its standard error, whether
+/// the curve shows it, and the density's interval at two standard errors.
+fn term(t: &Term) -> (f64, f64, f64, bool, f64, f64) {
+    let (lo, hi) = t.interval(2.0);
+    (
+        t.value(),
+        t.coefficient,
+        t.std_error,
+        t.is_identified(),
+        lo,
+        hi,
+    )
+}
+
+/// A fit as Python gets it: the three terms, the points fitted, the τ range and the misfit.
+type FitTuple = (
+    (f64, f64, f64, bool, f64, f64),
+    (f64, f64, f64, bool, f64, f64),
+    (f64, f64, f64, bool, f64, f64),
+    u32,
+    (f64, f64),
+    f64,
+);
+
+fn fit_tuple(f: &NoiseFit) -> FitTuple {
+    (
+        term(&f.white),
+        term(&f.instability),
+        term(&f.random_walk),
+        f.points,
+        f.tau_range,
+        f.misfit,
+    )
+}
+
+/// The Allan variance of 3-axis samples at rest (N, 3), `dt` apart, at octave cluster times (the core's
+/// `noise::AllanVariance`, 32 octaves: clusters of up to 2³¹ samples), and the noise fitted to the
+/// clusters with τ ≥ `min_tau`, pooled over the axes and per axis (`noise::NoiseFit`). Returns (τ, the
+/// variance per axis, the differences) per octave, the pooled fit, and the three per-axis fits (None
+/// where too few points).
+#[allow(clippy::type_complexity)]
+#[pyfunction]
+fn allan<'py>(
+    py: Python<'py>,
+    samples: PyReadonlyArray2<'py, f64>,
+    dt: f64,
+    min_tau: f64,
+) -> PyResult<(
+    Vec<(f64, [f64; 3], u32)>,
+    Option<FitTuple>,
+    [Option<FitTuple>; 3],
+)> {
+    let (rows, rest) = samples.as_slice()?.as_chunks::<3>();
+    if !rest.is_empty() {
+        return Err(PyValueError::new_err("expected shape (N, 3)"));
+    }
+    let avar = py
+        .detach(|| -> Result<AllanVariance<f64, 32>, Error> {
+            let mut a = AllanVariance::<f64, 32>::new(dt)?;
+            for r in rows {
+                a.push(Vec3::new(r[0], r[1], r[2]))?;
+            }
+            Ok(a)
+        })
+        .map_err(config_error)?;
+    let clusters = avar
+        .clusters()
+        .map(|c| {
+            (
+                c.tau,
+                [c.variance.x, c.variance.y, c.variance.z],
+                c.differences,
+            )
+        })
+        .collect();
+    let pooled = NoiseFit::pooled_from(&avar, min_tau).map(|f| fit_tuple(&f));
+    let axes = [0, 1, 2].map(|k| NoiseFit::axis(&avar, k, min_tau).map(|f| fit_tuple(&f)));
+    Ok((clusters, pooled, axes))
+}
+
 /// The loop a Rust user writes for the default configuration (ExpMap, History, FirstOrder, plain
 /// accumulator, a fixed period), with concrete types, on the same buffer; timed in Rust. Returns the
 /// seconds it took (the output allocation included, as in `integrate`) and its attitudes.
@@ -1250,6 +1332,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(from_euler_zyx_f64, m)?)?;
     m.add_function(wrap_pyfunction!(to_euler_zxz_f64, m)?)?;
     m.add_function(wrap_pyfunction!(from_euler_zxz_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(allan, m)?)?;
     m.add_function(wrap_pyfunction!(rust_loop_f32, m)?)?;
     m.add_function(wrap_pyfunction!(rust_loop_f64, m)?)?;
     m.add(

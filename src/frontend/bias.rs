@@ -301,9 +301,10 @@ impl<T: Real> BiasEstimator<T> {
     /// Blocks per window: the flatness test and the step's shape look at their means.
     pub const BLOCKS: usize = BLOCKS;
 
-    /// The default `drift`: 10⁻⁴ rad/s/√s (0.0057 °/s/√s; 0.044 °/s after a minute without a still
-    /// window, so a turn of 0.5 °/s is kept for about five minutes), chosen by the bias scenario mix and
-    /// held out on BROAD (docs/bias.md).
+    /// The default `drift`: 2·10⁻⁵ rad/s/√s (0.0011 °/s/√s: a still window 5·drift·√t off the estimate
+    /// is believed after `t` seconds without one that agrees, 0.044 °/s after a minute, 0.34 °/s after an
+    /// hour, so a slow turn of 0.5 °/s is kept for about two hours), chosen by the bias scenario mix and
+    /// held out on BROAD (docs/bias.md, docs/heldout.md).
     pub const DEFAULT_DRIFT: f64 = 2.0e-5;
 
     /// The default `rest_drift` (rad/s/√s): how fast the bias wanders while the body stays still.
@@ -423,8 +424,8 @@ impl<T: Real> BiasEstimator<T> {
     /// Takes the scatter of block means at rest from the sensor's white noise instead of learning it:
     /// `N²/τ_block` per axis, `N` = `noise.arw()` (rad/√s; a datasheet's, or identified from a rest
     /// recording by [`NoiseFit`](crate::noise::NoiseFit), which also sees what the sensor's own filter
-    /// does to short clusters if fitted from τ ≥ a block), and the rest drift from its bias walk
-    /// ([`BiasEstimator::with_rest_drift`]).
+    /// does to short clusters if fitted from τ ≥ a block). (Its bias walk is the rest drift's physical
+    /// value: give it with [`BiasEstimator::with_rest_drift`].)
     ///
     /// # Errors
     /// [`Error::InvalidEstimator`] if the white noise is zero (nothing would ever be flat).
@@ -436,7 +437,6 @@ impl<T: Real> BiasEstimator<T> {
         }
         self.rest_scatter = Vec3::new(v, v, v);
         self.rest_dof = T::MAX;
-        self.rest_drift = noise.bias_walk();
         Ok(self)
     }
 

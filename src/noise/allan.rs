@@ -56,7 +56,7 @@ pub struct Cluster<T> {
 }
 
 /// The non-overlapping Allan variance of a 3-axis sensor at octave-spaced cluster times `τ = 2^k · period`
-/// (`k = 0 … OCTAVES − 1`), computed as the samples arrive: no buffer, no allocation, a few operations per
+/// (`k = 0 … OCTAVES − 1`, `OCTAVES ≤ 32`), computed as the samples arrive: no buffer, no allocation, a few operations per
 /// sample (the octave `k` works once every `2^k` samples).
 ///
 /// Each octave forms clusters of `2^k` consecutive samples from two clusters of the octave below (so
@@ -104,6 +104,8 @@ impl<T: Real, const OCTAVES: usize> AllanVariance<T, OCTAVES> {
     /// [`Error::NonFiniteStep`] or [`Error::NonPositiveStep`] for a `period` that is not finite and
     /// positive.
     pub fn new(period: f64) -> Result<Self, Error> {
+        // A cluster's sample count is a u32: 2^31 at most.
+        const { assert!(OCTAVES <= 32, "at most 32 octaves") };
         if !period.is_finite() {
             return Err(Error::NonFiniteStep);
         }

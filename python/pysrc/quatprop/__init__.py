@@ -33,6 +33,7 @@ __all__ = [
     "RefusedSample",
     "BiasEstimator",
     "CountScale",
+    "allan",
     "to_euler_zyx",
     "from_euler_zyx",
     "to_euler_zxz",
@@ -112,9 +113,14 @@ class BiasEstimator:
             an agreeing one, 0.34 °/s after an hour). Larger follows a warming sensor sooner and keeps a
             slow turn for less long; 0 takes the bias for a constant (changed by a step at rest only).
             The gyro's own rate random walk is the least it can be.
+        rest_drift: how fast the bias wanders while the body stays still (rad/s/√s): the filter's
+            process noise between still windows that agree (it sets how closely a drift at rest is
+            followed and how much noise the estimate keeps; it lets no slow turn in). The gyro's rate
+            random walk and bias instability (:func:`allan`) are its physical value; None: the core's
+            ``DEFAULT_REST_DRIFT``, 2e-5 rad/s/√s.
         noise_density: the gyro's white noise (rad/√s = rad/s/√Hz, a datasheet's or identified from a
-            rest recording); None: the scatter at rest is learned from the still windows (the first
-            still window is then taken as it is).
+            rest recording with :func:`allan`); None: the scatter at rest is learned from the still
+            windows (the first still window is then taken as it is).
         initial: a known bias to start from (rad/s, body axes, e.g. stored at the last shutdown), with
             ``initial_sigma``.
         initial_sigma: the standard deviation of ``initial`` (rad/s): how far the bias may have moved
@@ -137,6 +143,7 @@ class BiasEstimator:
     window: float
     gate: float
     drift: _Optional[float] = None
+    rest_drift: _Optional[float] = None
     noise_density: _Optional[float] = None
     initial: _Optional[_Sequence[float]] = None
     initial_sigma: _Optional[float] = None
@@ -166,7 +173,7 @@ class BiasEstimator:
             return None if v is None else float(v)
 
         return _EstimatorArgs(float(self.window), float(self.gate), opt(self.period), opt(self.drift),
-                              opt(self.noise_density), initial, opt(self.accel_gate),
+                              opt(self.rest_drift), opt(self.noise_density), initial, opt(self.accel_gate),
                               opt(self.temperature_span), bool(self.motion))
 
 
@@ -178,11 +185,72 @@ class _EstimatorArgs:
     gate: float
     period: _Optional[float]
     drift: _Optional[float]
+    rest_drift: _Optional[float]
     noise: _Optional[float]
     initial: _Optional[tuple]
     accel_gate: _Optional[float]
     span: _Optional[float]
     motion: bool
+
+
+def _fit(f) -> _Optional[dict]:
+    if f is None:
+        return None
+    names = ("value", "coefficient", "std_error", "identified", "lower", "upper")
+    white, instability, walk, points, tau_range, misfit = f
+    return {
+        "white": dict(zip(names, white)),
+        "instability": dict(zip(names, instability)),
+        "random_walk": dict(zip(names, walk)),
+        "points": points,
+        "tau_range": tau_range,
+        "misfit": misfit,
+    }
+
+
+def allan(samples, dt: float, min_tau: float = 0.0) -> dict:
+    """The noise of a 3-axis sensor at rest, from its Allan variance (the core's ``noise::AllanVariance``
+    and ``noise::NoiseFit``): white noise ``N``, bias instability ``B`` and random walk ``K``, each with its
+    standard error.
+
+    The Allan variance is the non-overlapping one at octave cluster times ``τ = 2^k·dt``, computed as the
+    samples stream (no buffer: the same code runs on a microcontroller). The model
+    ``σ²(τ) = N²/τ + (2 ln 2/π) B² + K² τ/3`` is fitted at once to every cluster with ``τ ≥ min_tau``
+    (weighted by each point's own uncertainty, iterated, every coefficient non-negative); a term the
+    recording is too short to show is reported as not identified, with an upper bound.
+
+    Args:
+        samples: (N, 3) readings at rest, float64: a gyroscope in rad/s or an accelerometer in m/s² (any
+            fixed axes; a constant offset does not matter).
+        dt: the sample period (s).
+        min_tau: the shortest cluster time fitted (s), e.g. ``16 * dt`` to skip the octaves where the
+            sensor's own low-pass filter makes its samples correlated.
+
+    Returns:
+        ``{"tau": (K,), "variance": (K, 3), "differences": (K,), "pooled": fit, "axes": [fit, fit, fit]}``,
+        each fit ``{"white", "instability", "random_walk": term, "points", "tau_range", "misfit"}`` (or None
+        with fewer than two clusters), each term ``{"value": density, "coefficient", "std_error",
+        "identified": bool, "lower", "upper"}`` (the density's interval at two standard errors). Units: a
+        gyroscope's ``white`` in rad/√s (× 180/π × 60 for °/√h), ``instability`` in rad/s, ``random_walk``
+        in rad/s/√s; an accelerometer's in m/s/√s, m/s², m/s²/√s. ``pooled`` (the mean of the three axes'
+        variances, three times the differences) is also at the top level: ``allan(x, dt)["white"]``.
+
+    Raises:
+        ValueError: a NaN or infinite sample (``NonFiniteRate``), or a ``dt`` not finite and positive.
+    """
+    a = _array("samples", samples, _np.float64, 2, 3)
+    clusters, pooled, axes = _native.allan(a, float(dt), float(min_tau))
+    fit = _fit(pooled)
+    out = {
+        "tau": _np.array([c[0] for c in clusters], dtype=_np.float64),
+        "variance": _np.array([c[1] for c in clusters], dtype=_np.float64).reshape(-1, 3),
+        "differences": _np.array([c[2] for c in clusters], dtype=_np.int64),
+        "pooled": fit,
+        "axes": [_fit(f) for f in axes],
+    }
+    if fit is not None:
+        out.update(fit)
+    return out
 
 
 @_dataclass(frozen=True)

@@ -3,7 +3,7 @@ the attitude maps body vectors to the reference frame, rates are body-frame (q' 
 radians, rad/s, seconds."""
 
 from dataclasses import dataclass
-from typing import Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -16,6 +16,7 @@ __all__ = [
     "RefusedSample",
     "BiasEstimator",
     "CountScale",
+    "allan",
     "to_euler_zyx",
     "from_euler_zyx",
     "to_euler_zxz",
@@ -68,6 +69,7 @@ class BiasEstimator:
     window: float
     gate: float
     drift: Optional[float] = None
+    rest_drift: Optional[float] = None
     noise_density: Optional[float] = None
     initial: Optional[Sequence[float]] = None
     initial_sigma: Optional[float] = None
@@ -94,6 +96,10 @@ class Calibration:
 
 def calibrate(gyr: npt.ArrayLike, calibration: Calibration, precision: Optional[_Precision] = None) -> _FloatArray:
     """(N, 3) readings (rad/s, sensor axes) → (N, 3) calibrated rates."""
+
+def allan(samples: npt.ArrayLike, dt: float, min_tau: float = 0.0) -> Dict[str, Any]:
+    """The Allan variance of (N, 3) samples at rest and the white noise, bias instability and random walk
+    fitted to it, each with its standard error (the core's `noise`)."""
 
 class Stream:
     """Samples integrated call by call, all state kept between calls: any chunking gives the bits of one
