@@ -12,18 +12,33 @@
 //!   `|‖Rv‖ − ‖v‖| ≤ 1.5 tol ‖v‖`; the rows' rounding adds `√3 γ₃ √(1 + tol) ‖v‖ ≤ 2.7 ε ‖v‖` and
 //!   underflow `6·TINY`.
 //! - `FixedBias`: refused iff non-finite; `apply` subtracts bit for bit.
-//! - `BiasEstimator`: any window, gate and memory (refused as documented), optional initial bias, then
-//!   arbitrary samples with NaN and saturated ones: `Err` ⇒ unchanged; `Ok` ⇒ output = sample − bias
-//!   before it, and a saturated sample never changes the estimate. With changes switched off
-//!   (`with_change(MAX)`) the estimate follows an independent implementation of the documented rule
-//!   (stillness windows, running mean over `memory` windows; a window whose mean overflows teaches
-//!   nothing) bit for bit. With changes on, and optionally an
-//!   acceleration gate and the temperature model fed arbitrary accelerations and temperatures (NaN and
-//!   infinities among them): a NaN or infinite one is refused as `NonFiniteAux` with the estimator
-//!   unchanged; otherwise the output is the sample minus `bias_at(temperature)` from before, bit for bit,
-//!   and the estimate stays finite; `correct` then `learn` gives the same output and state. A `MotionBias` (any period) fed those outputs with the accelerations
-//!   and arbitrary `dt`: refused input (typed) leaves it unchanged, its estimate stays within ±2 °/s, and
-//!   `at_rest` zeroes it.
+//! - `BiasEstimator`: any window (0, 1 to 7 samples, 8 to 64, any `u32`; in samples or in seconds),
+//!   period and gate, optional drift, rest drift, noise model, acceleration gate, temperature model and
+//!   initial bias ± sigma: each refused exactly as documented, with its error (`InvalidEstimator`;
+//!   `NonFiniteRate` for a non-finite initial bias); `new(seconds)` is `from_samples` of the rounded
+//!   count. Then arbitrary samples (levels held, with noise within the gate or stepped, and fresh values
+//!   with NaN, infinities, huge and saturated ones), accelerations, temperatures and `correct_bias`
+//!   calls. `Err` ⇒ the estimator unchanged bit for bit, `NonFiniteRate` for a non-finite rate,
+//!   `NonFiniteAux` for a non-finite acceleration or temperature or one whose `bias_at` overflows; `Ok` ⇒
+//!   the output is the sample minus `bias_at(temperature)` (`bias()` without one) from before, bit for
+//!   bit, the saturation flag kept; `correct` then `learn` gives the same output and state as
+//!   `update_with`. The still samples counted here from the documented gate rule (within `gate` of the
+//!   estimate, not saturated, the acceleration within the acceleration gate of the window's first):
+//!   `bias()`, `is_learned()` and `last_window()` change only on the sample that completes `window` still
+//!   samples in a row, never on a saturated one (not asserted where the library may gate against an
+//!   acceleration from before the window, until a sample both rules refuse). `bias()` always finite;
+//!   `variance()` `T::MAX` on every axis before anything is learned, finite and non-negative after (for a
+//!   drift whose growth over 2³² samples stays below `T::MAX`'s ulp); `is_learned()` never reverts;
+//!   `last_window()` finite; a slope only with the temperature model, finite. `correct_bias(δ)`: `Err`
+//!   (`NonFiniteRate`) ⇒ unchanged; `Ok` ⇒ `bias()` moved by δ bit for bit, the variance and last window
+//!   kept. For windows under 8 samples without the temperature model (one block, no flatness or step
+//!   test), an independent mirror of the documented estimator (a per-axis scalar Kalman filter measuring
+//!   each window's mean with the variance `(gate·2⁻¹³)²`, saturated at `T::MAX`, or the noise model's
+//!   `N²/τ`; growth by `drift` unseen and `rest_drift` over a window that agrees; a disagreeing window
+//!   confirmed by the next or dropped; a window that overflows undone) gives `bias()`, `variance()`,
+//!   `is_learned()`, `last_window()` and every `correct_bias` verdict bit for bit. A `MotionBias` (any
+//!   period) fed the outputs with the accelerations and arbitrary `dt`: refused input (typed) leaves it
+//!   unchanged, its estimate stays within ±2 °/s, and `at_rest` zeroes it.
 //! - `FixedPeriod`: construction errors as documented; with refusals given back by `carry_over`, the
 //!   accepted `dt`s sum to `k·period` (k samples) within ½ ulp of the last `dt`, plus one ulp of each `dt`
 //!   handed out with a carried interval, plus `4ε²·period` per sample (rounding of the carry and of `lo`)
@@ -42,7 +57,8 @@ use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, CountScale, FixedBias, FixedPeriod, MotionBias,
     TickClock, ROTATION_TOLERANCE,
 };
-use quatprop::{Error, GyroSample, Quat, Vec3};
+use quatprop::noise::GyroNoise;
+use quatprop::{Error, GyroSample, Quat, Real, Vec3};
 
 /// Decodes and checks one input.
 pub fn run(data: &[u8]) {
@@ -283,262 +299,911 @@ fn fixed_bias<T: Fz>(b: &mut Bytes<'_>) {
     }
 }
 
-/// The documented bias estimator, written out independently.
+/// `[x, y, z]`: the bias checks compute per axis, independently of `Vec3`'s operators.
+fn arr<T: Real>(v: Vec3<T>) -> [T; 3] {
+    [v.x, v.y, v.z]
+}
+
+fn vec3<T: Real>(a: [T; 3]) -> Vec3<T> {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+fn finite3<T: Real>(a: [T; 3]) -> bool {
+    a.iter().all(|x| x.is_finite())
+}
+
+/// Every axis within `gate` (a NaN is not).
+fn within<T: Real>(a: [T; 3], gate: T) -> bool {
+    a.iter().all(|x| x.abs() <= gate)
+}
+
+/// Two vectors equal bit for bit (a NaN equals a NaN).
+fn same_vec<T: Fz>(a: Vec3<T>, b: Vec3<T>) -> bool {
+    bits_or_nan(a.x, b.x) && bits_or_nan(a.y, b.y) && bits_or_nan(a.z, b.z)
+}
+
+/// A count as the library converts it (saturating at 2³¹ − 1).
+fn count<T: Fz>(n: u32) -> T {
+    T::of_i32(i32::try_from(n).unwrap_or(i32::MAX))
+}
+
+/// What a sample did to the current window.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Verdict {
+    /// Not still: the window is aborted.
+    Aborted,
+    /// Still: counted in the window.
+    Counted,
+    /// Still, and the window's last sample: the only sample that may change the estimate.
+    Closed,
+}
+
+/// The documented stillness rule, counted here: a sample is still if, minus the bias subtracted from it,
+/// it is within `gate` on every axis and not saturated, and (with an acceleration gate) its acceleration,
+/// if given, is within that gate of the window's first on every axis. A sample that is not still aborts
+/// the window; the `window`-th still sample in a row closes it.
+///
+/// One known difference (reported): the library takes as the gate's reference the acceleration of a
+/// sample that was not still at an empty window after motion, if the window then starts with samples
+/// without one. Where that may have happened (`stale`) and a window starts without an acceleration, the
+/// library's count may differ from this one (`unsure`) until a sample that both abort on (its rate).
+#[derive(Clone, Copy, Debug)]
+struct Stillness<T> {
+    window: u32,
+    gate: T,
+    accel_gate: Option<T>,
+    count: u32,
+    /// The window's first acceleration.
+    reference: Option<[T; 3]>,
+    /// The library may hold an acceleration from before the window as its reference.
+    stale: bool,
+    /// The library's count may differ from `count`.
+    unsure: bool,
+}
+
+impl<T: Fz> Stillness<T> {
+    fn new(window: u32, gate: T, accel_gate: Option<T>) -> Self {
+        Self {
+            window,
+            gate,
+            accel_gate,
+            count: 0,
+            reference: None,
+            stale: false,
+            unsure: false,
+        }
+    }
+
+    /// The window restarts (`with_initial`, `correct_bias`).
+    fn restart(&mut self) {
+        *self = Self::new(self.window, self.gate, self.accel_gate);
+    }
+
+    /// One accepted sample: `d` the rate the estimator returned (the sample minus the bias it subtracted).
+    fn sample(&mut self, d: [T; 3], saturated: bool, accel: Option<[T; 3]>) -> Verdict {
+        if saturated || !within(d, self.gate) {
+            // Not still by its rate under either rule: both counts restart here. The library forgets its
+            // reference when its window held samples; at an empty one it may keep this acceleration.
+            self.stale = if self.count > 0 && !self.unsure {
+                false
+            } else {
+                self.stale || accel.is_some()
+            };
+            self.count = 0;
+            self.reference = None;
+            self.unsure = false;
+            return Verdict::Aborted;
+        }
+        if let (Some(a), Some(r), Some(g)) = (accel, self.reference, self.accel_gate) {
+            if !within([a[0] - r[0], a[1] - r[1], a[2] - r[2]], g) {
+                self.stale = self.unsure;
+                self.count = 0;
+                self.reference = None;
+                return Verdict::Aborted;
+            }
+        }
+        if self.unsure {
+            self.stale |= accel.is_some();
+        } else if self.count == 0 {
+            if accel.is_some() {
+                self.stale = false; // the library's reference is this acceleration too
+            } else if self.stale && self.accel_gate.is_some() {
+                self.unsure = true;
+            }
+        }
+        if self.reference.is_none() {
+            self.reference = accel;
+        }
+        self.count += 1;
+        if self.count < self.window {
+            return Verdict::Counted;
+        }
+        self.count = 0;
+        self.reference = None;
+        if !self.unsure {
+            self.stale = false;
+        }
+        Verdict::Closed
+    }
+}
+
+/// `d² > 25 v` on some axis.
+fn disagrees<T: Fz>(d: [T; 3], v: [T; 3]) -> bool {
+    let k2 = T::of_i32(25);
+    (0..3).any(|i| d[i] * d[i] > k2 * v[i])
+}
+
+/// `p / (p + r)` per axis (½ if that sum is not positive).
+fn gain<T: Fz>(p: [T; 3], r: [T; 3]) -> [T; 3] {
+    [0, 1, 2].map(|i| {
+        let s = p[i] + r[i];
+        if s > T::ZERO {
+            p[i] / s
+        } else {
+            T::HALF
+        }
+    })
+}
+
+/// One still window's measurement of the bias: its mean, the variance of that mean, its mean temperature.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Measured<T> {
+    bias: [T; 3],
+    variance: [T; 3],
+    temperature: Option<T>,
+}
+
+impl<T: Fz> Measured<T> {
+    fn is_finite(&self) -> bool {
+        finite3(self.bias)
+            && finite3(self.variance)
+            && self.temperature.is_none_or(|t| t.is_finite())
+    }
+}
+
+/// What the window before showed, for a change of level (the mirror's windows are never tested for
+/// steps: a level disagreeing with the estimate waits for the next still window to confirm it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Link<T> {
+    Moving,
+    AtEstimate,
+    /// A still window that disagreed.
+    Candidate(Measured<T>),
+}
+
+/// `q²` times `n` periods.
+fn walk<T: Fz>(q: T, period: T, n: u32) -> T {
+    q * q * period * count::<T>(n)
+}
+
+/// The estimator for a window of fewer than 8 samples without the temperature model, written out from its
+/// documentation: one block per window, no flatness or step test, so every window that passes the gate is
+/// still; its mean is a measurement of the bias with the variance of the noise model's block (`N²/τ`) or
+/// else the floor `(gate·2⁻¹³)²` (saturated at `T::MAX`); a scalar Kalman filter per axis on a bias that
+/// walks with density `drift` while it is not seen (motion, windows that disagree) and `rest_drift` over
+/// a still window that agrees (the variance grows by `q²·period` per sample); a still window that
+/// disagrees by more than five standard deviations waits for the next still window to confirm it (their
+/// weighted mean adopted) or is dropped. A window whose mean (or temperatures) overflow teaches nothing,
+/// and a window that would leave a number infinite is undone.
 #[derive(Clone, Copy, Debug)]
 struct Mirror<T> {
     window: u32,
-    gate: T,
-    memory: u32,
-    bias: Vec3<T>,
-    sum: Vec3<T>,
-    count: u32,
+    drift: T,
+    rest_drift: T,
+    period: T,
+    measurement: T,
+    bias: [T; 3],
+    variance: [T; 3],
+    since: u32,
+    /// Windows taken (an initial bias counts one), and the last window taken.
     learned: u32,
+    taken: Option<Measured<T>>,
+    /// The mean temperature where the estimate holds: kept without the temperature model too (an
+    /// overflowing one undoes the window).
+    bias_temperature: Option<T>,
+    link: Link<T>,
+    sum: [T; 3],
+    count: u32,
+    temperature_sum: T,
+    temperatures: u32,
 }
 
-fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
-    let window = match b.below(4) {
-        0 => u32::from(b.u8() % 3),
-        _ => 1 + b.below(8) as u32,
-    };
+impl<T: Fz> Mirror<T> {
+    fn new(window: u32, drift: T, rest_drift: T, period: T, measurement: T) -> Self {
+        Self {
+            window,
+            drift,
+            rest_drift,
+            period,
+            measurement,
+            bias: [T::ZERO; 3],
+            variance: [T::ZERO; 3],
+            since: 0,
+            learned: 0,
+            taken: None,
+            bias_temperature: None,
+            link: Link::Moving,
+            sum: [T::ZERO; 3],
+            count: 0,
+            temperature_sum: T::ZERO,
+            temperatures: 0,
+        }
+    }
+
+    /// `variance()`: the last update's, grown by `drift` since; `T::MAX` before the first window.
+    fn variance(&self) -> Vec3<T> {
+        if self.learned == 0 {
+            return Vec3::new(T::MAX, T::MAX, T::MAX);
+        }
+        let g = walk(self.drift, self.period, self.since);
+        vec3(self.variance.map(|v| v + g))
+    }
+
+    fn last_window(&self) -> Option<(u32, Vec3<T>, Vec3<T>)> {
+        self.taken
+            .map(|m| (self.learned, vec3(m.bias), vec3(m.variance)))
+    }
+
+    fn restart(&mut self) {
+        self.sum = [T::ZERO; 3];
+        self.count = 0;
+        self.temperature_sum = T::ZERO;
+        self.temperatures = 0;
+    }
+
+    fn is_finite(&self) -> bool {
+        let link = match self.link {
+            Link::Candidate(c) => c.is_finite(),
+            _ => true,
+        };
+        finite3(self.bias)
+            && finite3(self.variance)
+            && self.bias_temperature.is_none_or(|t| t.is_finite())
+            && self.taken.is_none_or(|m| m.is_finite())
+            && link
+    }
+
+    fn initial(&mut self, bias: [T; 3], sigma: T) {
+        self.bias = bias;
+        self.variance = [sigma * sigma; 3];
+        self.since = 0;
+        self.learned = 1;
+        self.bias_temperature = None;
+        self.link = Link::AtEstimate;
+        self.restart();
+    }
+
+    /// `correct_bias`: `false` if refused.
+    fn correct_bias(&mut self, delta: [T; 3]) -> bool {
+        if !finite3(delta) {
+            return false;
+        }
+        let mut next = *self;
+        next.bias = [0, 1, 2].map(|i| self.bias[i] + delta[i]);
+        if let Link::Candidate(c) = &mut next.link {
+            c.bias = [0, 1, 2].map(|i| c.bias[i] + delta[i]);
+        }
+        next.restart();
+        if !next.is_finite() {
+            return false;
+        }
+        *self = next;
+        true
+    }
+
+    fn sample(&mut self, d: [T; 3], still: bool, temperature: Option<T>) {
+        self.since = self.since.saturating_add(1);
+        if !still {
+            self.restart();
+            self.link = Link::Moving;
+            return;
+        }
+        for i in 0..3 {
+            self.sum[i] += d[i];
+        }
+        if let Some(t) = temperature {
+            self.temperature_sum += t;
+            self.temperatures += 1;
+        }
+        self.count += 1;
+        if self.count >= self.window {
+            self.close();
+            self.restart();
+        }
+    }
+
+    fn grow(&mut self, g: T) {
+        self.variance = self.variance.map(|v| v + g);
+    }
+
+    fn close(&mut self) {
+        let before = *self;
+        let elapsed = self.since;
+        self.since = 0;
+        // Not seen before the window: `drift`; over the window: `rest_drift` if it agrees, else `drift`.
+        let in_window = elapsed.min(self.window);
+        let unseen = walk(self.drift, self.period, elapsed.saturating_sub(self.window));
+        let seen = walk(self.rest_drift, self.period, in_window);
+        let window_unseen = walk(self.drift, self.period, in_window);
+        self.grow(unseen);
+        let temperature = (self.temperatures > 0)
+            .then(|| self.temperature_sum * (T::ONE / count::<T>(self.temperatures)));
+        let inv = T::ONE / count::<T>(self.window);
+        let m = Measured {
+            bias: [0, 1, 2].map(|i| self.bias[i] + self.sum[i] * inv),
+            variance: [self.measurement; 3],
+            temperature,
+        };
+        let (mb, r) = (m.bias, m.variance);
+        if !(finite3(mb) && temperature.is_none_or(|t| t.is_finite())) {
+            self.grow(window_unseen);
+            self.link = Link::Moving;
+        } else if self.learned == 0 {
+            self.bias = mb;
+            self.variance = r;
+            self.bias_temperature = temperature;
+            self.taken = Some(m);
+            self.learned += 1;
+            self.link = Link::AtEstimate;
+        } else {
+            let innovation = [0, 1, 2].map(|i| mb[i] - self.bias[i]);
+            let predicted = self.variance.map(|v| v + seen);
+            let spread = [0, 1, 2].map(|i| predicted[i] + r[i]);
+            if !disagrees(innovation, spread) {
+                self.variance = predicted;
+                let k = gain(self.variance, r);
+                self.bias = [0, 1, 2].map(|i| self.bias[i] + k[i] * innovation[i]);
+                self.variance = [0, 1, 2].map(|i| (T::ONE - k[i]) * self.variance[i]);
+                self.taken = Some(m);
+                self.learned = self.learned.saturating_add(1);
+                self.link = Link::AtEstimate;
+            } else {
+                self.grow(window_unseen);
+                self.link = match self.link {
+                    Link::AtEstimate => Link::Candidate(m),
+                    Link::Candidate(c) => {
+                        let d = [0, 1, 2].map(|i| mb[i] - c.bias[i]);
+                        let s = [0, 1, 2].map(|i| r[i] + c.variance[i]);
+                        if disagrees(d, s) {
+                            Link::Moving
+                        } else {
+                            let w = gain(c.variance, r);
+                            self.bias = [0, 1, 2].map(|i| c.bias[i] + w[i] * (mb[i] - c.bias[i]));
+                            self.variance = [0, 1, 2].map(|i| (T::ONE - w[i]) * c.variance[i]);
+                            self.taken = Some(Measured {
+                                bias: self.bias,
+                                variance: self.variance,
+                                temperature,
+                            });
+                            self.bias_temperature = match (c.temperature, temperature) {
+                                (Some(a), Some(b)) => Some((a + b) * T::HALF),
+                                (a, b) => b.or(a),
+                            };
+                            self.learned = self.learned.saturating_add(1);
+                            Link::AtEstimate
+                        }
+                    }
+                    Link::Moving => Link::Moving,
+                };
+            }
+        }
+        if !self.is_finite() {
+            *self = before;
+            self.link = Link::Moving;
+        }
+    }
+}
+
+/// `BiasEstimator::from_samples`'s conditions: a window of 1 to 2³¹ − 1 samples, a period and a gate
+/// finite and positive in `T`.
+fn estimator_valid<T: Fz>(window: u32, period: f64, gate: T) -> bool {
+    let p = T::from_f64(period);
+    (1..=i32::MAX as u32).contains(&window)
+        && p > T::ZERO
+        && p.is_finite()
+        && gate > T::ZERO
+        && gate.is_finite()
+}
+
+/// A new estimator from the bytes (a window in samples or in seconds), its construction checked: the
+/// estimator, its window in samples and its gate; `None` if refused.
+fn estimator_config<T: Fz>(b: &mut Bytes<'_>) -> Option<(BiasEstimator<T>, u32, f64, T)> {
+    let period = f64_from(b, [1e-3, 1.0 / 1600.0, 2.5e-3, 1e-2]);
     let gate: T = match b.below(4) {
         0 => b.real(UNIT),
         _ => T::from_f64([0.05, 0.01, 0.1, 1e-3][b.below(4)]),
     };
-    let memory = match b.below(4) {
-        0 => u32::from(b.u8() % 3),
-        _ => 1 + b.below(4) as u32,
-    };
-    let default_memory = b.bool();
-    let r = if default_memory {
-        BiasEstimator::from_samples(window, gate, 64)
+    let (r, window) = if b.below(4) == 0 {
+        let seconds = f64_from(b, [4e-3, 8e-3, 1.6e-2, 6.4e-2]);
+        let r = BiasEstimator::<T>::new(seconds, period, gate);
+        // round(seconds / period) samples, if both are finite and positive and that is 1 to 2³¹ − 1;
+        // otherwise refused (window 0 below).
+        let positive = |x: f64| x > 0.0 && x.is_finite();
+        let n = (seconds / period).round();
+        let counted = positive(seconds) && positive(period) && n >= 1.0 && n <= f64::from(i32::MAX);
+        let window = if counted { n as u32 } else { 0 };
+        if counted {
+            let by_count = BiasEstimator::from_samples(window, period, gate);
+            assert_same_text(
+                &r,
+                &by_count,
+                &"new(seconds) differs from from_samples(its samples)",
+            );
+        }
+        (r, window)
     } else {
-        BiasEstimator::from_samples(window, gate, memory)
+        let window = match b.below(8) {
+            0 => b.u32(),
+            1 => 0,
+            2..=4 => 1 + b.below(7) as u32,
+            _ => 8 + b.below(57) as u32,
+        };
+        (BiasEstimator::from_samples(window, period, gate), window)
     };
-    let memory = if default_memory { 64 } else { memory };
-    let valid = window > 0 && memory > 0 && gate > T::ZERO && gate.is_finite();
-    let follow = b.bool();
-    let mut est = match r.and_then(|e| if follow { Ok(e) } else { e.with_change(T::MAX) }) {
+    let valid = estimator_valid(window, period, gate);
+    match r {
         Ok(e) => {
-            assert!(valid);
-            e
+            assert!(
+                valid,
+                "window {window}, period {period:e}, gate {gate:?} accepted"
+            );
+            assert!(!e.is_learned());
+            assert_eq!(vec_bits(e.bias()), vec_bits(Vec3::<T>::ZERO));
+            assert_eq!(
+                vec_bits(e.variance()),
+                vec_bits(Vec3::new(T::MAX, T::MAX, T::MAX))
+            );
+            assert_eq!(e.temperature_slope(), None);
+            Some((e, window, period, gate))
         }
         Err(e) => {
             assert_eq!(e, Error::InvalidEstimator);
-            assert!(!valid);
-            return;
-        }
-    };
-    let mut m = Mirror {
-        window,
-        gate,
-        memory,
-        bias: Vec3::ZERO,
-        sum: Vec3::ZERO,
-        count: 0,
-        learned: 0,
-    };
-    if b.u8() < 64 {
-        let initial = b.vec::<T>([1e-3, 1e-2, 0.05, 1.0]);
-        match est.with_initial(initial) {
-            Ok(e) => {
-                assert!(initial.is_finite());
-                est = e;
-                m.bias = initial;
-                m.learned = 1;
-            }
-            Err(e) => {
-                assert_eq!(e, Error::NonFiniteRate);
-                assert!(!initial.is_finite());
-            }
-        }
-    }
-    assert_eq!(vec_bits(est.bias()), vec_bits(m.bias));
-    if follow {
-        following(b, est);
-        return;
-    }
-    for _ in 0..256 {
-        if b.is_empty() {
-            break;
-        }
-        let s = GyroSample {
-            rate: b.vec::<T>([1e-3, 1e-2, 0.05, 1.0]),
-            saturated: b.u8() < 32,
-        };
-        let before = est;
-        let r = est.update(s);
-        if !s.rate.is_finite() {
-            assert_eq!(r, Err(Error::NonFiniteRate));
-            assert!(est == before);
-            super::assert_same_text(&est, &before, &"refused sample changed the estimator");
-            continue;
-        }
-        let out = r.expect("a finite sample is taken");
-        let d = Vec3::new(
-            s.rate.x - m.bias.x,
-            s.rate.y - m.bias.y,
-            s.rate.z - m.bias.z,
-        );
-        assert_eq!(vec_bits(out.rate), vec_bits(d));
-        assert_eq!(out.saturated, s.saturated);
-        let g = m.gate;
-        let still = !s.saturated && d.x.abs() <= g && d.y.abs() <= g && d.z.abs() <= g;
-        if still {
-            m.sum = Vec3::new(m.sum.x + d.x, m.sum.y + d.y, m.sum.z + d.z);
-            m.count += 1;
-            if m.count >= m.window {
-                // A window whose mean (added to the estimate) overflows teaches nothing.
-                let w = T::ONE / T::of_i32(m.window as i32);
-                let probe = Vec3::new(
-                    m.bias.x + m.sum.x * w,
-                    m.bias.y + m.sum.y * w,
-                    m.bias.z + m.sum.z * w,
-                );
-                if probe.is_finite() {
-                    m.learned = (m.learned + 1).min(m.memory);
-                    let n = T::of_i32(m.window as i32) * T::of_i32(m.learned as i32);
-                    let inv = T::ONE / n;
-                    m.bias = Vec3::new(
-                        m.bias.x + m.sum.x * inv,
-                        m.bias.y + m.sum.y * inv,
-                        m.bias.z + m.sum.z * inv,
-                    );
-                }
-                m.sum = Vec3::ZERO;
-                m.count = 0;
-            }
-        } else {
-            m.sum = Vec3::ZERO;
-            m.count = 0;
-        }
-        if s.saturated {
-            assert_eq!(
-                vec_bits(est.bias()),
-                vec_bits(before.bias()),
-                "learned from a saturated sample"
+            assert!(
+                !valid,
+                "window {window}, period {period:e}, gate {gate:?} refused"
             );
+            None
         }
-        assert_eq!(vec_bits(est.bias()), vec_bits(m.bias), "{m:?}");
-        assert_eq!(est.is_learned(), m.learned > 0);
     }
 }
 
-/// The estimator with changes followed, optionally an acceleration gate and the temperature model, fed
-/// arbitrary samples, accelerations and temperatures: the invariants that hold whatever it learns.
-fn following<T: Fz>(b: &mut Bytes<'_>, mut est: BiasEstimator<T>) {
-    let period = f64_from(b, [1e-3, 1e-2, 2.5e-4, 3.5e-3]);
-    let mut motion = match MotionBias::<T>::new(period) {
-        Ok(m) => {
-            assert!(period > 0.0 && period.is_finite());
-            Some(m)
+/// An option set on a copy: `Ok` ⇒ `valid`; `Err` ⇒ `want`, and `!valid`.
+fn option<T: Fz>(
+    est: &mut BiasEstimator<T>,
+    r: Result<BiasEstimator<T>, Error>,
+    valid: bool,
+    want: Error,
+    what: &str,
+) -> bool {
+    match r {
+        Ok(e) => {
+            assert!(valid, "{what} accepted");
+            *est = e;
+            true
         }
         Err(e) => {
-            assert!(matches!(e, Error::NonFiniteStep | Error::NonPositiveStep));
-            assert!(!(period > 0.0 && period.is_finite()));
-            None
+            assert_eq!(e, want, "{what}");
+            assert!(!valid, "{what} refused");
+            false
+        }
+    }
+}
+
+fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
+    let Some((mut est, window, period, gate)) = estimator_config::<T>(b) else {
+        return;
+    };
+    let period_t = T::from_f64(period);
+    let positive = |x: T| x > T::ZERO && x.is_finite();
+    let mut drift = T::from_f64(BiasEstimator::<T>::DEFAULT_DRIFT);
+    if b.bool() {
+        let d: T = b.real([1e-5, 1e-3, 0.1, 1e3]);
+        let valid = d >= T::ZERO && d.is_finite();
+        let r = est.with_drift(d);
+        if option(&mut est, r, valid, Error::InvalidEstimator, "drift") {
+            drift = d;
+        }
+    }
+    let mut rest_drift = T::from_f64(BiasEstimator::<T>::DEFAULT_REST_DRIFT);
+    if b.bool() {
+        let d: T = b.real([1e-6, 1e-4, 0.1, 1e3]);
+        let valid = d >= T::ZERO && d.is_finite();
+        let r = est.with_rest_drift(d);
+        if option(&mut est, r, valid, Error::InvalidEstimator, "rest drift") {
+            rest_drift = d;
+        }
+    }
+    let mut measurement = {
+        let s = gate * T::from_f64(1.0 / 8192.0);
+        let f = s * s;
+        if f.is_finite() {
+            f
+        } else {
+            T::MAX
         }
     };
     if b.bool() {
-        let gate: T = b.real(UNIT);
-        let r = est.with_accel_gate(gate);
-        match r {
-            Ok(e) => est = e,
+        let arw: T = b.real([1e-5, 1e-4, 1e-3, 1e-2]);
+        let walk: T = if b.bool() {
+            b.real([1e-6, 1e-5, 1e-4, 1e3])
+        } else {
+            T::ZERO
+        };
+        match GyroNoise::new(arw, walk) {
+            Ok(noise) => {
+                // `arw²/τ_block`, τ_block the period times the samples per block (the bias walk is not
+                // taken: the rest drift is given apart).
+                let block = if window >= 8 { window / 8 } else { window };
+                let tau = period_t * T::from_f64(f64::from(block));
+                let v = arw * arw / tau;
+                let r = est.with_noise(&noise);
+                if option(&mut est, r, positive(v), Error::InvalidEstimator, "noise") {
+                    measurement = v;
+                }
+            }
             Err(e) => {
-                assert_eq!(e, Error::InvalidEstimator);
-                assert!(!(gate > T::ZERO && gate.is_finite()));
+                assert_eq!(e, Error::InvalidNoise);
+                let ok = |x: T| x >= T::ZERO && x.is_finite();
+                assert!(!(ok(arw) && ok(walk)));
             }
         }
     }
+    let mut accel_gate = None;
+    if b.bool() {
+        let g: T = b.real(UNIT);
+        let r = est.with_accel_gate(g);
+        if option(
+            &mut est,
+            r,
+            positive(g),
+            Error::InvalidEstimator,
+            "accel gate",
+        ) {
+            accel_gate = Some(g);
+        }
+    }
+    let mut thermal = false;
     if b.bool() {
         let span: T = b.real(UNIT);
-        match est.with_temperature_model(span) {
-            Ok(e) => est = e,
-            Err(e) => {
-                assert_eq!(e, Error::InvalidEstimator);
-                assert!(!(span > T::ZERO && span.is_finite()));
+        let r = est.with_temperature_model(span);
+        thermal = option(&mut est, r, positive(span), Error::InvalidEstimator, "span");
+    }
+    // `variance()` grows by drift²·period per sample since the last window: a drift for which that reaches
+    // half an ulp of T::MAX within 2³² samples may overflow it (and one beyond √MAX gives NaN at once:
+    // reported), so `variance()` is asserted finite (and growing between windows) only below that.
+    let growth_bound = drift.to_f64() * drift.to_f64() * period_t.to_f64() * 2f64.powi(32);
+    let growth_fits = 16.0 * growth_bound < T::BIG * T::EPS;
+    let mut mirror = (window < 8 && !thermal)
+        .then(|| Mirror::new(window, drift, rest_drift, period_t, measurement));
+    if b.u8() < 64 {
+        let initial = b.vec::<T>([1e-3, 1e-2, 0.05, 1.0]);
+        let sigma: T = b.real([1e-3, 1e-2, 1e-4, 1.0]);
+        let r = est.with_initial(initial, sigma);
+        let want = if !initial.is_finite() {
+            Some(Error::NonFiniteRate)
+        } else if !(sigma > T::ZERO && (sigma * sigma).is_finite()) {
+            Some(Error::InvalidEstimator)
+        } else {
+            None
+        };
+        assert_eq!(r.err(), want, "initial {initial:?} ± {sigma:?}");
+        if let Ok(e) = r {
+            est = e;
+            assert!(est.is_learned());
+            assert_eq!(vec_bits(est.bias()), vec_bits(initial));
+            if growth_fits {
+                let v = sigma * sigma;
+                assert_eq!(vec_bits(est.variance()), vec_bits(Vec3::new(v, v, v)));
+            }
+            if let Some(m) = mirror.as_mut() {
+                m.initial(arr(initial), sigma);
             }
         }
     }
-    for _ in 0..256 {
+    let mut motion = if b.bool() {
+        let period = f64_from(b, [1e-3, 1e-2, 2.5e-4, 3.5e-3]);
+        match MotionBias::<T>::new(period) {
+            Ok(m) => {
+                assert!(period > 0.0 && period.is_finite());
+                Some(m)
+            }
+            Err(e) => {
+                assert!(matches!(e, Error::NonFiniteStep | Error::NonPositiveStep));
+                assert!(!(period > 0.0 && period.is_finite()));
+                None
+            }
+        }
+    } else {
+        None
+    };
+    let mut still = Stillness::new(window, gate, accel_gate);
+    // FUZZ_TRACE=1 prints the configuration and every call (to read a crash input).
+    let trace = super::trace();
+    if trace {
+        eprintln!(
+            "{} window {window}, period {period:e}, gate {gate:?}, drift {drift:?}, rest drift {rest_drift:?}, accel gate {accel_gate:?}, thermal {thermal}, mirror {}: {est:?}",
+            T::NAME,
+            mirror.is_some()
+        );
+    }
+    // What the samples are made of: a level (held, with noise of up to gate/64, or stepped by up to
+    // gate/2), an acceleration level and a temperature level; or fresh values from the bytes.
+    let mut level = [T::ZERO; 3];
+    let mut accel_level = [T::ZERO, T::ZERO, T::from_f64(9.81)];
+    let mut temperature_level = T::from_f64(25.0);
+    let fraction = |b: &mut Bytes<'_>| T::from_f64(f64::from(b.u8() as i8) / 128.0);
+    for _ in 0..1024 {
         if b.is_empty() {
             break;
         }
-        let s = GyroSample {
-            rate: b.vec::<T>([1e-3, 1e-2, 0.05, 1.0]),
-            saturated: b.u8() < 32,
+        let op = b.u8();
+        if op == 0xC0 {
+            let delta = b.vec::<T>([1e-4, 1e-3, 1e-2, 1.0]);
+            if trace {
+                eprintln!("correct_bias({delta:?}) on {est:?}");
+            }
+            correct_bias(&mut est, delta, &mut still, mirror.as_mut());
+            continue;
+        }
+        let rate = match op & 3 {
+            0 => {
+                level = arr(b.vec::<T>([1e-3, 1e-2, 0.05, 1.0]));
+                level
+            }
+            1 => level,
+            2 => {
+                let n = gate * T::from_f64(1.0 / 64.0);
+                [0, 1, 2].map(|i| level[i] + fraction(b) * n)
+            }
+            _ => {
+                let n = gate * T::HALF;
+                level = [0, 1, 2].map(|i| level[i] + fraction(b) * n);
+                level
+            }
         };
-        let accel = b.bool().then(|| b.vec::<T>([0.1, 1.0, 9.81, 100.0]));
-        let temperature = b
-            .bool()
-            .then(|| T::from_f64(25.0) + b.real::<T>([0.1, 1.0, 10.0, 100.0]));
-        let aux = Aux { accel, temperature };
+        let accel = match (op >> 2) & 3 {
+            0 => None,
+            1 => Some(accel_level),
+            2 => {
+                let n = T::from_f64(0.05);
+                Some([0, 1, 2].map(|i| accel_level[i] + fraction(b) * n))
+            }
+            _ => {
+                accel_level = arr(b.vec::<T>([0.1, 1.0, 9.81, 100.0]));
+                Some(accel_level)
+            }
+        };
+        let temperature = match (op >> 4) & 3 {
+            0 => None,
+            1 => Some(temperature_level),
+            2 => {
+                temperature_level += fraction(b) * T::HALF;
+                Some(temperature_level)
+            }
+            _ => {
+                temperature_level = T::from_f64(25.0) + b.real::<T>([0.1, 1.0, 10.0, 100.0]);
+                Some(temperature_level)
+            }
+        };
+        let s = GyroSample {
+            rate: vec3(rate),
+            saturated: op >> 6 == 3,
+        };
+        let aux = Aux {
+            accel: accel.map(vec3),
+            temperature,
+        };
         let before = est;
-        let r = est.update_with(s, aux);
+        let r = if aux == Aux::NONE {
+            est.update(s)
+        } else {
+            est.update_with(s, aux)
+        };
         // update_with is correct, then learn: the same state and output, split as the C API calls them.
         let mut split = before;
         let c = split.correct(s, aux);
-        assert_eq!(format!("{c:?}"), format!("{r:?}"));
+        if c != r {
+            assert_same_text(&c, &r, &"correct differs from update_with");
+        }
         if let Ok(out) = c {
             split.learn(out, aux);
         }
-        assert_same_text(&split, &est, &"correct + learn differ from update_with");
+        if split != est {
+            assert_same_text(&split, &est, &"correct + learn differ from update_with");
+        }
         if !s.rate.is_finite() {
             assert_eq!(r, Err(Error::NonFiniteRate));
-            assert_same_text(&est, &before, &"refused sample changed the estimator");
+            if est != before {
+                assert_same_text(&est, &before, &"refused sample changed the estimator");
+            }
             continue;
         }
-        let aux_finite =
-            accel.is_none_or(|a| a.is_finite()) && temperature.is_none_or(|t| t.is_finite());
+        let aux_finite = accel.is_none_or(finite3) && temperature.is_none_or(|t| t.is_finite());
+        if !thermal {
+            if let Some(t) = temperature {
+                // No line: the estimate itself at any temperature.
+                assert_eq!(vec_bits(before.bias_at(t)), vec_bits(before.bias()));
+            }
+        }
         let used = temperature.map_or(before.bias(), |t| before.bias_at(t));
         if !aux_finite || !used.is_finite() {
             assert_eq!(r, Err(Error::NonFiniteAux));
-            assert_same_text(&est, &before, &"refused aux changed the estimator");
+            if est != before {
+                assert_same_text(&est, &before, &"refused aux changed the estimator");
+            }
             continue;
         }
         let out = r.expect("a finite sample is taken");
-        let d = Vec3::new(s.rate.x - used.x, s.rate.y - used.y, s.rate.z - used.z);
-        assert_eq!(vec_bits(out.rate), vec_bits(d));
+        let want = [0, 1, 2].map(|i| arr(s.rate)[i] - arr(used)[i]);
+        assert_eq!(
+            vec_bits(out.rate),
+            vec_bits(vec3(want)),
+            "output: sample − bias before"
+        );
         assert_eq!(out.saturated, s.saturated);
+        let unsure = still.unsure;
+        let verdict = still.sample(want, s.saturated, accel);
+        let changed = vec_bits(est.bias()) != vec_bits(before.bias());
         if s.saturated {
+            assert!(!changed, "learned from a saturated sample");
+        }
+        if verdict != Verdict::Closed && !unsure && !still.unsure {
+            assert!(
+                !changed,
+                "the estimate changed within a window ({verdict:?}, {still:?})"
+            );
             assert_eq!(
-                vec_bits(est.bias()),
-                vec_bits(before.bias()),
-                "learned from a saturated sample"
+                est.is_learned(),
+                before.is_learned(),
+                "learned within a window"
+            );
+            assert_same_text(
+                &est.last_window(),
+                &before.last_window(),
+                &"a window taken within a window",
+            );
+            if growth_fits && est.is_learned() {
+                let (v, w) = (arr(est.variance()), arr(before.variance()));
+                assert!(
+                    (0..3).all(|i| v[i] >= w[i]),
+                    "variance {w:?} -> {v:?} within a window"
+                );
+            }
+        }
+        if trace {
+            eprintln!(
+                "{s:?} {aux:?} -> {:?}: {verdict:?}{}, bias {:?}, variance {:?}",
+                out.rate,
+                if still.unsure { " (unsure)" } else { "" },
+                est.bias(),
+                est.variance()
             );
         }
-        assert!(est.bias().is_finite(), "{est:?}");
-        assert!(
-            est.is_learned() || !before.is_learned(),
-            "forgot what it learned"
-        );
-        // The residual in motion on the corrected rate: refused input leaves it unchanged; otherwise its
-        // estimate stays finite and within its ±2 °/s clip.
+        if still.unsure {
+            mirror = None;
+        }
+        if let Some(m) = mirror.as_mut() {
+            m.sample(want, verdict != Verdict::Aborted, temperature);
+        }
+        invariants(&est, &before, mirror.as_ref(), thermal, growth_fits);
         if let (Some(m), Some(a)) = (motion.as_mut(), accel) {
             let dt: T = b.real(UNIT);
-            let kept = *m;
-            match m.update(out.rate, a, dt) {
-                Ok(()) => {
-                    let c = T::from_f64(2.0_f64.to_radians());
-                    let r = m.bias();
-                    assert!(r.x.abs() <= c && r.y.abs() <= c && r.z.abs() <= c, "{m:?}");
-                }
-                Err(e) => {
-                    assert!(matches!(
-                        e,
-                        Error::NonFiniteRate
-                            | Error::NonFiniteAux
-                            | Error::NonFiniteStep
-                            | Error::NonPositiveStep
-                            | Error::NonFiniteResult
-                    ));
-                    assert_same_text(m, &kept, &"refused input changed the motion bias");
-                }
-            }
-            if est.bias() != before.bias() {
-                m.at_rest();
-                assert_eq!(vec_bits(m.bias()), vec_bits(Vec3::<T>::ZERO));
-            }
+            following(m, out.rate, vec3(a), dt, changed);
         }
+    }
+}
+
+/// `correct_bias(delta)`: refused (typed) ⇒ unchanged; accepted ⇒ the estimate moved by `delta` bit for
+/// bit, its variance kept, the window restarted; as the mirror says.
+fn correct_bias<T: Fz>(
+    est: &mut BiasEstimator<T>,
+    delta: Vec3<T>,
+    still: &mut Stillness<T>,
+    mirror: Option<&mut Mirror<T>>,
+) {
+    let before = *est;
+    let r = est.correct_bias(delta);
+    let predicted = mirror.map(|m| m.correct_bias(arr(delta)));
+    match r {
+        Ok(()) => {
+            assert!(delta.is_finite());
+            let want = [0, 1, 2].map(|i| arr(before.bias())[i] + arr(delta)[i]);
+            assert_eq!(
+                vec_bits(est.bias()),
+                vec_bits(vec3(want)),
+                "bias moved by {delta:?}"
+            );
+            assert!(finite3(want));
+            assert!(same_vec(est.variance(), before.variance()));
+            assert_eq!(est.is_learned(), before.is_learned());
+            assert_same_text(&est.last_window(), &before.last_window(), &"last window");
+            assert_ne!(predicted, Some(false), "correct_bias accepted");
+            still.restart();
+        }
+        Err(e) => {
+            assert_eq!(e, Error::NonFiniteRate);
+            if *est != before {
+                assert_same_text(est, &before, &"refused correction changed the estimator");
+            }
+            // Refused for a non-finite delta or moved estimate, or a waiting level or a sum of the bias(T)
+            // line (`weight·δ`) that overflows: the mirror (no line) tells exactly.
+            assert_ne!(predicted, Some(true), "correct_bias refused");
+        }
+    }
+}
+
+/// What holds after every sample: the estimate finite; the variance `T::MAX` before anything is learned,
+/// finite and non-negative after (below the drift that overflows it); learned stays learned; a slope only
+/// with the temperature model, and finite; and the mirror's estimate and variance bit for bit.
+fn invariants<T: Fz>(
+    est: &BiasEstimator<T>,
+    before: &BiasEstimator<T>,
+    mirror: Option<&Mirror<T>>,
+    thermal: bool,
+    growth_fits: bool,
+) {
+    assert!(est.bias().is_finite(), "{est:?}");
+    let v = est.variance();
+    if est.is_learned() {
+        if growth_fits {
+            assert!(
+                arr(v).iter().all(|&x| x >= T::ZERO && x.is_finite()),
+                "variance {v:?}"
+            );
+        }
+    } else {
+        assert_eq!(vec_bits(v), vec_bits(Vec3::new(T::MAX, T::MAX, T::MAX)));
+    }
+    assert!(
+        est.is_learned() || !before.is_learned(),
+        "forgot what it learned"
+    );
+    // The last window taken: a finite mean with a finite, non-negative variance, counted from 1 (an
+    // initial bias counts one).
+    if let Some((n, b, v)) = est.last_window() {
+        assert!(est.is_learned() && n >= 1, "{n}");
+        assert!(
+            b.is_finite() && arr(v).iter().all(|&x| x >= T::ZERO && x.is_finite()),
+            "{b:?} {v:?}"
+        );
+    }
+    if let Some(slope) = est.temperature_slope() {
+        assert!(thermal && slope.is_finite(), "slope {slope:?}");
+    }
+    if let Some(m) = mirror {
+        assert_eq!(vec_bits(est.bias()), vec_bits(vec3(m.bias)), "{m:?}");
+        assert!(same_vec(v, m.variance()), "variance {v:?}, {m:?}, {est:?}");
+        assert_eq!(est.is_learned(), m.learned > 0, "{m:?}");
+        assert_same_text(&est.last_window(), &m.last_window(), &"last window");
+    }
+}
+
+/// A `MotionBias` fed the estimator's output with the acceleration over an arbitrary `dt`: refused input
+/// (typed) leaves it unchanged; otherwise its estimate stays finite and within its ±2 °/s clip; `at_rest`
+/// (called when the rest estimate changed) zeroes it.
+fn following<T: Fz>(m: &mut MotionBias<T>, rate: Vec3<T>, accel: Vec3<T>, dt: T, rest: bool) {
+    let kept = *m;
+    match m.update(rate, accel, dt) {
+        Ok(()) => {
+            let c = T::from_f64(2.0_f64.to_radians());
+            let r = m.bias();
+            assert!(r.x.abs() <= c && r.y.abs() <= c && r.z.abs() <= c, "{m:?}");
+        }
+        Err(e) => {
+            assert!(matches!(
+                e,
+                Error::NonFiniteRate
+                    | Error::NonFiniteAux
+                    | Error::NonFiniteStep
+                    | Error::NonPositiveStep
+                    | Error::NonFiniteResult
+            ));
+            assert_same_text(m, &kept, &"refused input changed the motion bias");
+        }
+    }
+    if rest {
+        m.at_rest();
+        assert_eq!(vec_bits(m.bias()), vec_bits(Vec3::<T>::ZERO));
     }
 }
 
