@@ -565,3 +565,72 @@ fn a_quiet_first_window_does_not_lock_the_estimator_out() {
     let counts: Vec<u32> = learned.iter().map(|c| c.unwrap_or(0)).collect();
     assert_eq!(counts, (1..=30).collect::<Vec<u32>>(), "{counts:?}");
 }
+
+/// Found by the fuzz target's checks (three cases, each a library bug): a window's acceleration gate is
+/// referenced to the window's own first acceleration, never one a sample in motion left before it; a
+/// window that is not a multiple of 8 samples sums the accelerations of its 8 blocks only (past them, a
+/// ramp looked perfectly flat); a drift whose square overflows is refused, and the growth saturates.
+#[test]
+fn fuzz_findings_on_the_accelerometer_and_the_drift() {
+    let aux = |x: f32| Aux {
+        accel: Some(Vec3::new(x, 0.0, 9.81)),
+        temperature: None,
+    };
+    // Window of 4, accel gate 0.5: a moving sample with accel x = 5, a still one without accel, then
+    // three still ones with x = 0: a still window, learned.
+    let mut e = BiasEstimator::<f32>::from_samples(4, 1e-3, 0.05)
+        .unwrap()
+        .with_accel_gate(0.5)
+        .unwrap();
+    e.update_with(GyroSample::new(Vec3::new(1.0, 0.0, 0.0)), aux(5.0))
+        .unwrap();
+    e.update(GyroSample::new(Vec3::ZERO)).unwrap();
+    for _ in 0..3 {
+        e.update_with(GyroSample::new(Vec3::ZERO), aux(0.0))
+            .unwrap();
+    }
+    assert!(e.is_learned());
+    // Windows of 12 and 15 samples (blocks of 1): 20 windows at rest, then one whose acceleration ramps
+    // by 0.5 m/s² per sample: not flat, not learned (as with 16).
+    for window in [12_u32, 15, 16] {
+        let mut e = BiasEstimator::<f64>::from_samples(window, 1e-3, 0.05).unwrap();
+        let mut noise = Noise(41);
+        let n = |noise: &mut Noise| Vec3::new(noise.next(), noise.next(), noise.next()) * 1e-4;
+        for _ in 0..20 * window {
+            let a = Some(Vec3::new(0.0, 0.0, 9.81) + n(&mut noise) * 100.0);
+            e.update_with(
+                GyroSample::new(n(&mut noise)),
+                Aux {
+                    accel: a,
+                    temperature: None,
+                },
+            )
+            .unwrap();
+        }
+        let learned = e.last_window().unwrap().0;
+        for k in 0..window {
+            let a = Some(Vec3::new(0.5 * k as f64, 0.0, 9.81));
+            e.update_with(
+                GyroSample::new(n(&mut noise)),
+                Aux {
+                    accel: a,
+                    temperature: None,
+                },
+            )
+            .unwrap();
+        }
+        assert_eq!(e.last_window().unwrap().0, learned, "window {window}");
+    }
+    // A drift whose square overflows is refused; a huge one that is not saturates the variance.
+    let e = BiasEstimator::<f32>::from_samples(8, 1e-3, 0.05).unwrap();
+    assert_eq!(e.with_drift(1e30), Err(Error::InvalidEstimator));
+    assert_eq!(e.with_rest_drift(1e30), Err(Error::InvalidEstimator));
+    let mut e = e
+        .with_drift(1e19)
+        .and_then(|e| e.with_initial(Vec3::ZERO, 1e-3))
+        .unwrap();
+    for _ in 0..1000 {
+        e.update(GyroSample::new(Vec3::new(1.0, 0.0, 0.0))).unwrap();
+    }
+    assert!(e.variance().is_finite(), "{:?}", e.variance());
+}

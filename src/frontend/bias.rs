@@ -394,9 +394,9 @@ impl<T: Real> BiasEstimator<T> {
     /// usually moves a MEMS bias faster.
     ///
     /// # Errors
-    /// [`Error::InvalidEstimator`] if `drift` is negative, NaN or infinite.
+    /// [`Error::InvalidEstimator`] if `drift` is negative, NaN, or so large that its square overflows.
     pub fn with_drift(mut self, drift: T) -> Result<Self, Error> {
-        if !(drift >= T::ZERO && drift <= T::MAX) {
+        if !(drift >= T::ZERO && drift * drift <= T::MAX) {
             return Err(Error::InvalidEstimator);
         }
         self.drift = drift;
@@ -412,9 +412,10 @@ impl<T: Real> BiasEstimator<T> {
     /// temperature adds to it.
     ///
     /// # Errors
-    /// [`Error::InvalidEstimator`] if `rest_drift` is negative, NaN or infinite.
+    /// [`Error::InvalidEstimator`] if `rest_drift` is negative, NaN, or so large that its square
+    /// overflows.
     pub fn with_rest_drift(mut self, rest_drift: T) -> Result<Self, Error> {
-        if !(rest_drift >= T::ZERO && rest_drift <= T::MAX) {
+        if !(rest_drift >= T::ZERO && rest_drift * rest_drift <= T::MAX) {
             return Err(Error::InvalidEstimator);
         }
         self.rest_drift = rest_drift;
@@ -484,7 +485,7 @@ impl<T: Real> BiasEstimator<T> {
     ///
     /// # Errors
     /// [`Error::NonFiniteRate`] if a component of `bias` is NaN or infinite; [`Error::InvalidEstimator`]
-    /// if `sigma` is not finite and positive.
+    /// if `sigma` is not positive or its square overflows.
     pub fn with_initial(mut self, bias: Vec3<T>, sigma: T) -> Result<Self, Error> {
         if !bias.is_finite() {
             return Err(Error::NonFiniteRate);
@@ -511,8 +512,8 @@ impl<T: Real> BiasEstimator<T> {
     /// move with it.
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`] if `delta` is NaN or infinite or the moved estimate overflows; the
-    /// estimator is then unchanged.
+    /// [`Error::NonFiniteRate`] if `delta` is NaN or infinite, or the moved estimate, a level waiting to be
+    /// confirmed or the bias(T) line's sums overflow; the estimator is then unchanged.
     pub fn correct_bias(&mut self, delta: Vec3<T>) -> Result<(), Error> {
         if !delta.is_finite() {
             return Err(Error::NonFiniteRate);
@@ -654,6 +655,11 @@ impl<T: Real> BiasEstimator<T> {
             return;
         }
         self.since = self.since.saturating_add(1);
+        if self.count == 0 {
+            // A window starts here: its reference is its own first acceleration (none yet), never one
+            // left by a sample in motion before it.
+            self.accel_reference = None;
+        }
         let g = self.gate;
         // A NaN or infinite component fails the gate: not still.
         let mut still = !corrected.saturated && d.x.abs() <= g && d.y.abs() <= g && d.z.abs() <= g;
@@ -710,7 +716,9 @@ impl<T: Real> BiasEstimator<T> {
             *slot = self.block_sum * inv;
         }
         self.block_sum = Vec3::ZERO;
-        if self.accel_count > 0 {
+        // Only the window's 8 blocks count (samples past them, when the window is not a multiple of 8,
+        // are gated but not summed), for the accelerations as for the rates.
+        if self.accel_count > 0 && j < BLOCKS {
             let m = self.accel_block_sum * inv;
             self.accel_means += m;
             self.accel_means_sq += zip(m, m, |a, b| a * b);
@@ -762,9 +770,15 @@ impl<T: Real> BiasEstimator<T> {
         self.growth_at(self.drift, samples)
     }
 
-    /// `q²` times `samples` periods.
+    /// `q²` times `samples` periods, saturated at `T::MAX` (a drift so large that its growth overflows has
+    /// let the bias go anywhere; the variance stays finite).
     fn growth_at(&self, q: T, samples: u32) -> T {
-        q * q * self.period * count::<T>(samples)
+        let g = q * q * self.period * count::<T>(samples);
+        if g <= T::MAX {
+            g
+        } else {
+            T::MAX
+        }
     }
 
     /// Every learned quantity finite (the window sums are reset after each window).
@@ -1047,7 +1061,7 @@ impl<T: Real> BiasEstimator<T> {
                     temperature: m.temperature,
                 });
                 self.bias_temperature = match (c.temperature, m.temperature) {
-                    (Some(a), Some(b)) => Some((a + b) * T::HALF),
+                    (Some(a), Some(b)) => Some(a * T::HALF + b * T::HALF),
                     (a, b) => b.or(a),
                 };
                 self.record(&c);
