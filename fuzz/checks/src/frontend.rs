@@ -11,7 +11,9 @@
 //!   of an accepted matrix preserves the norm: `RᵀR = I + E`, `|Eᵢⱼ| ≤ tol` gives `‖E‖₂ ≤ 3 tol` and
 //!   `|‖Rv‖ − ‖v‖| ≤ 1.5 tol ‖v‖`; the rows' rounding adds `√3 γ₃ √(1 + tol) ‖v‖ ≤ 2.7 ε ‖v‖` and
 //!   underflow `6·TINY`.
-//! - `FixedBias`: refused iff non-finite; `apply` subtracts bit for bit.
+//! - `FixedBias`: refused iff non-finite; `apply` subtracts bit for bit; `correct_bias(δ)` (δ with NaN,
+//!   infinities and huge values among them): `Ok` iff the sum is finite, the offset then moved by δ bit
+//!   for bit; `Err` (`NonFiniteRate`) ⇒ unchanged.
 //! - `BiasEstimator`: any window (0, 1 to 7 samples, 8 to 64, any `u32`; in samples or in seconds),
 //!   period and gate, optional drift, rest drift, noise model, acceleration gate, temperature model and
 //!   initial bias ± sigma: each refused exactly as documented, with its error (`InvalidEstimator`;
@@ -25,10 +27,9 @@
 //!   `update_with`. The still samples counted here from the documented gate rule (within `gate` of the
 //!   estimate, not saturated, the acceleration within the acceleration gate of the window's first):
 //!   `bias()`, `is_learned()` and `last_window()` change only on the sample that completes `window` still
-//!   samples in a row, never on a saturated one (not asserted where the library may gate against an
-//!   acceleration from before the window, until a sample both rules refuse). `bias()` always finite;
-//!   `variance()` `T::MAX` on every axis before anything is learned, finite and non-negative after (for a
-//!   drift whose growth over 2³² samples stays below `T::MAX`'s ulp); `is_learned()` never reverts;
+//!   samples in a row, never on a saturated one. `bias()` always finite; `variance()` `T::MAX` on every
+//!   axis before anything is learned, finite and non-negative after, growing between windows (a drift
+//!   whose square overflows is refused; the growth saturates at `T::MAX`); `is_learned()` never reverts;
 //!   `last_window()` finite; a slope only with the temperature model, finite. `correct_bias(δ)`: `Err`
 //!   (`NonFiniteRate`) ⇒ unchanged; `Ok` ⇒ `bias()` moved by δ bit for bit, the variance and last window
 //!   kept. For windows under 8 samples without the temperature model (one block, no flatness or step
@@ -291,6 +292,20 @@ fn fixed_bias<T: Fz>(b: &mut Bytes<'_>) {
                 assert_eq!(vec_bits(out.rate), vec_bits(want));
                 assert_eq!(out.saturated, s.saturated);
             }
+            let delta = b.vec::<T>(RATE);
+            let sum = Vec3::new(bias.x + delta.x, bias.y + delta.y, bias.z + delta.z);
+            let mut moved = f;
+            match moved.correct_bias(delta) {
+                Ok(()) => {
+                    assert!(sum.is_finite());
+                    assert_eq!(vec_bits(moved.bias()), vec_bits(sum));
+                }
+                Err(e) => {
+                    assert_eq!(e, Error::NonFiniteRate);
+                    assert!(!sum.is_finite());
+                    assert_eq!(vec_bits(moved.bias()), vec_bits(bias));
+                }
+            }
         }
         Err(e) => {
             assert_eq!(e, Error::NonFiniteRate);
@@ -342,11 +357,7 @@ enum Verdict {
 /// it is within `gate` on every axis and not saturated, and (with an acceleration gate) its acceleration,
 /// if given, is within that gate of the window's first on every axis. A sample that is not still aborts
 /// the window; the `window`-th still sample in a row closes it.
-///
-/// One known difference (reported): the library takes as the gate's reference the acceleration of a
-/// sample that was not still at an empty window after motion, if the window then starts with samples
-/// without one. Where that may have happened (`stale`) and a window starts without an acceleration, the
-/// library's count may differ from this one (`unsure`) until a sample that both abort on (its rate).
+
 #[derive(Clone, Copy, Debug)]
 struct Stillness<T> {
     window: u32,
@@ -355,10 +366,6 @@ struct Stillness<T> {
     count: u32,
     /// The window's first acceleration.
     reference: Option<[T; 3]>,
-    /// The library may hold an acceleration from before the window as its reference.
-    stale: bool,
-    /// The library's count may differ from `count`.
-    unsure: bool,
 }
 
 impl<T: Fz> Stillness<T> {
@@ -369,8 +376,6 @@ impl<T: Fz> Stillness<T> {
             accel_gate,
             count: 0,
             reference: None,
-            stale: false,
-            unsure: false,
         }
     }
 
@@ -382,33 +387,15 @@ impl<T: Fz> Stillness<T> {
     /// One accepted sample: `d` the rate the estimator returned (the sample minus the bias it subtracted).
     fn sample(&mut self, d: [T; 3], saturated: bool, accel: Option<[T; 3]>) -> Verdict {
         if saturated || !within(d, self.gate) {
-            // Not still by its rate under either rule: both counts restart here. The library forgets its
-            // reference when its window held samples; at an empty one it may keep this acceleration.
-            self.stale = if self.count > 0 && !self.unsure {
-                false
-            } else {
-                self.stale || accel.is_some()
-            };
             self.count = 0;
             self.reference = None;
-            self.unsure = false;
             return Verdict::Aborted;
         }
         if let (Some(a), Some(r), Some(g)) = (accel, self.reference, self.accel_gate) {
             if !within([a[0] - r[0], a[1] - r[1], a[2] - r[2]], g) {
-                self.stale = self.unsure;
                 self.count = 0;
                 self.reference = None;
                 return Verdict::Aborted;
-            }
-        }
-        if self.unsure {
-            self.stale |= accel.is_some();
-        } else if self.count == 0 {
-            if accel.is_some() {
-                self.stale = false; // the library's reference is this acceleration too
-            } else if self.stale && self.accel_gate.is_some() {
-                self.unsure = true;
             }
         }
         if self.reference.is_none() {
@@ -420,9 +407,6 @@ impl<T: Fz> Stillness<T> {
         }
         self.count = 0;
         self.reference = None;
-        if !self.unsure {
-            self.stale = false;
-        }
         Verdict::Closed
     }
 }
@@ -473,7 +457,12 @@ enum Link<T> {
 
 /// `q²` times `n` periods.
 fn walk<T: Fz>(q: T, period: T, n: u32) -> T {
-    q * q * period * count::<T>(n)
+    let g = q * q * period * count::<T>(n);
+    if g <= T::MAX {
+        g
+    } else {
+        T::MAX
+    }
 }
 
 /// The estimator for a window of fewer than 8 samples without the temperature model, written out from its
@@ -676,7 +665,7 @@ impl<T: Fz> Mirror<T> {
                                 temperature,
                             });
                             self.bias_temperature = match (c.temperature, temperature) {
-                                (Some(a), Some(b)) => Some((a + b) * T::HALF),
+                                (Some(a), Some(b)) => Some(a * T::HALF + b * T::HALF),
                                 (a, b) => b.or(a),
                             };
                             self.learned = self.learned.saturating_add(1);
@@ -798,7 +787,7 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
     let mut drift = T::from_f64(BiasEstimator::<T>::DEFAULT_DRIFT);
     if b.bool() {
         let d: T = b.real([1e-5, 1e-3, 0.1, 1e3]);
-        let valid = d >= T::ZERO && d.is_finite();
+        let valid = d >= T::ZERO && (d * d).is_finite();
         let r = est.with_drift(d);
         if option(&mut est, r, valid, Error::InvalidEstimator, "drift") {
             drift = d;
@@ -807,7 +796,7 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
     let mut rest_drift = T::from_f64(BiasEstimator::<T>::DEFAULT_REST_DRIFT);
     if b.bool() {
         let d: T = b.real([1e-6, 1e-4, 0.1, 1e3]);
-        let valid = d >= T::ZERO && d.is_finite();
+        let valid = d >= T::ZERO && (d * d).is_finite();
         let r = est.with_rest_drift(d);
         if option(&mut est, r, valid, Error::InvalidEstimator, "rest drift") {
             rest_drift = d;
@@ -868,11 +857,6 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
         let r = est.with_temperature_model(span);
         thermal = option(&mut est, r, positive(span), Error::InvalidEstimator, "span");
     }
-    // `variance()` grows by drift²·period per sample since the last window: a drift for which that reaches
-    // half an ulp of T::MAX within 2³² samples may overflow it (and one beyond √MAX gives NaN at once:
-    // reported), so `variance()` is asserted finite (and growing between windows) only below that.
-    let growth_bound = drift.to_f64() * drift.to_f64() * period_t.to_f64() * 2f64.powi(32);
-    let growth_fits = 16.0 * growth_bound < T::BIG * T::EPS;
     let mut mirror = (window < 8 && !thermal)
         .then(|| Mirror::new(window, drift, rest_drift, period_t, measurement));
     if b.u8() < 64 {
@@ -891,10 +875,8 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
             est = e;
             assert!(est.is_learned());
             assert_eq!(vec_bits(est.bias()), vec_bits(initial));
-            if growth_fits {
-                let v = sigma * sigma;
-                assert_eq!(vec_bits(est.variance()), vec_bits(Vec3::new(v, v, v)));
-            }
+            let v = sigma * sigma;
+            assert_eq!(vec_bits(est.variance()), vec_bits(Vec3::new(v, v, v)));
             if let Some(m) = mirror.as_mut() {
                 m.initial(arr(initial), sigma);
             }
@@ -1041,13 +1023,12 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
             "output: sample − bias before"
         );
         assert_eq!(out.saturated, s.saturated);
-        let unsure = still.unsure;
         let verdict = still.sample(want, s.saturated, accel);
         let changed = vec_bits(est.bias()) != vec_bits(before.bias());
         if s.saturated {
             assert!(!changed, "learned from a saturated sample");
         }
-        if verdict != Verdict::Closed && !unsure && !still.unsure {
+        if verdict != Verdict::Closed {
             assert!(
                 !changed,
                 "the estimate changed within a window ({verdict:?}, {still:?})"
@@ -1062,7 +1043,7 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
                 &before.last_window(),
                 &"a window taken within a window",
             );
-            if growth_fits && est.is_learned() {
+            if est.is_learned() {
                 let (v, w) = (arr(est.variance()), arr(before.variance()));
                 assert!(
                     (0..3).all(|i| v[i] >= w[i]),
@@ -1072,20 +1053,16 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
         }
         if trace {
             eprintln!(
-                "{s:?} {aux:?} -> {:?}: {verdict:?}{}, bias {:?}, variance {:?}",
+                "{s:?} {aux:?} -> {:?}: {verdict:?}, bias {:?}, variance {:?}",
                 out.rate,
-                if still.unsure { " (unsure)" } else { "" },
                 est.bias(),
                 est.variance()
             );
         }
-        if still.unsure {
-            mirror = None;
-        }
         if let Some(m) = mirror.as_mut() {
             m.sample(want, verdict != Verdict::Aborted, temperature);
         }
-        invariants(&est, &before, mirror.as_ref(), thermal, growth_fits);
+        invariants(&est, &before, mirror.as_ref(), thermal);
         if let (Some(m), Some(a)) = (motion.as_mut(), accel) {
             let dt: T = b.real(UNIT);
             following(m, out.rate, vec3(a), dt, changed);
@@ -1133,24 +1110,21 @@ fn correct_bias<T: Fz>(
 }
 
 /// What holds after every sample: the estimate finite; the variance `T::MAX` before anything is learned,
-/// finite and non-negative after (below the drift that overflows it); learned stays learned; a slope only
+/// finite and non-negative after; learned stays learned; a slope only
 /// with the temperature model, and finite; and the mirror's estimate and variance bit for bit.
 fn invariants<T: Fz>(
     est: &BiasEstimator<T>,
     before: &BiasEstimator<T>,
     mirror: Option<&Mirror<T>>,
     thermal: bool,
-    growth_fits: bool,
 ) {
     assert!(est.bias().is_finite(), "{est:?}");
     let v = est.variance();
     if est.is_learned() {
-        if growth_fits {
-            assert!(
-                arr(v).iter().all(|&x| x >= T::ZERO && x.is_finite()),
-                "variance {v:?}"
-            );
-        }
+        assert!(
+            arr(v).iter().all(|&x| x >= T::ZERO && x.is_finite()),
+            "variance {v:?}"
+        );
     } else {
         assert_eq!(vec_bits(v), vec_bits(Vec3::new(T::MAX, T::MAX, T::MAX)));
     }
