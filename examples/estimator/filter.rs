@@ -120,9 +120,11 @@ pub struct Params {
 }
 
 impl Params {
-    /// The parameter set shipped with the example for a MEMS IMU sampled every `sample_period` seconds
-    /// (chosen on BROAD, docs/estimator.md says how): one covariance step and one accelerometer update
-    /// per ~10 ms.
+    /// The parameter set shipped with the example for a MEMS IMU sampled every `sample_period` seconds: one
+    /// covariance step per ~10 ms and one accelerometer update per ~0.1 s; `gyro_scale` and
+    /// `accel_noise` as leave-one-trial-out cross-validation chooses them on BROAD (docs/estimator.md),
+    /// the rest's provenance in docs/defaults.md. A sensor's own `gyro_arw` (identified at rest) and
+    /// `group_delay` are its own to give.
     #[must_use]
     pub fn mems(sample_period: f64) -> Self {
         let per = round_half_away(0.01 / sample_period);
@@ -131,8 +133,8 @@ impl Params {
             predict_every: if per >= 1.0 { per as u32 } else { 1 },
             gyro_arw: 0.5,
             gyro_bias_walk: 20.0,
-            gyro_scale: 0.02,
-            accel_noise: 0.4,
+            gyro_scale: 0.03,
+            accel_noise: 0.5,
             accel_floor: 0.005,
             gravity: 9.81,
             dynamic: 1.0,
@@ -570,7 +572,7 @@ impl<T: Real> Filter<T> {
             // held in the low-pass as it moves the attitude they were rotated with.
             lp.rotate(Quat::from_rotation_vector(before.rotate(dtheta)));
         }
-        self.bias = self.bias.correct(dbias)?;
+        self.bias.correct_bias(dbias)?;
         self.prop.correct_bias(dbias)?;
         self.q_start = self.prop.attitude();
         Ok(())
@@ -599,7 +601,7 @@ impl<T: Real> Filter<T> {
             restarted[4][4] = v.y;
             restarted[5][5] = v.z;
             self.cov = Ud::from_matrix(&restarted)?;
-            self.bias = self.bias.correct(z)?;
+            self.bias.correct_bias(z)?;
             self.prop.correct_bias(z)?;
             self.q_start = self.prop.attitude();
             self.counts.restarts += 1;
@@ -659,6 +661,29 @@ impl<T: Real> Filter<T> {
         let half = (a - c) * T::HALF;
         let lambda = (a + c) * T::HALF + (half * half + b * b).sqrt();
         Ok(lambda.max(T::ZERO).sqrt())
+    }
+
+    /// The covariance of the inclination error in the reference frame's horizontal axes (rad²: `[xx, xy,
+    /// yy]` of `R(q̂) P_θθ R(q̂)ᵀ`, reference x and y), as of the last epoch: with the error's horizontal
+    /// components `e` (the rotation taking the estimate to the truth, in the reference frame), the
+    /// normalized estimation error squared is `eᵀ P⁻¹ e`, 2 on average for a consistent filter.
+    ///
+    /// # Errors
+    /// [`FilterError::Core`] if the attitude is not finite.
+    pub fn inclination_covariance(&self) -> Result<[T; 3], FilterError> {
+        let q = self.prop.attitude();
+        if !q.is_finite() {
+            return Err(FilterError::Core(Error::NonFiniteQuaternion));
+        }
+        // The reference x and y axes in body axes: the rows of R(q̂) that give reference x and y.
+        let ex = q.conjugate().rotate(Vec3::new(T::ONE, T::ZERO, T::ZERO));
+        let ey = q.conjugate().rotate(Vec3::new(T::ZERO, T::ONE, T::ZERO));
+        let p = self.cov.matrix();
+        Ok([
+            quadratic(&p, ex, ex),
+            quadratic(&p, ex, ey),
+            quadratic(&p, ey, ey),
+        ])
     }
 
     /// What the filter counted.

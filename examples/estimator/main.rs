@@ -9,7 +9,8 @@
 //!   (m/s², `+g` up at rest). A first line that does not parse as numbers is a header and is skipped. The
 //!   samples are taken as evenly spaced: the period is `(t_last − t_first)/(N − 1)` (the timestamps are
 //!   not otherwise read).
-//! - **Output**: one line per input sample, after it is taken: `t,qw,qx,qy,qz,bx,by,bz,sigma_inclination`
+//! - **Output**: one line per input sample, after it is taken:
+//!   `t,qw,qx,qy,qz,bx,by,bz,sigma_inclination,pxx,pxy,pyy`
 //!   — the attitude (body to reference, reference z up, heading the filter's own; Hamilton, scalar first),
 //!   the gyro bias estimate (rad/s) and the inclination's 1σ (rad), all as the `f32` filter holds them
 //!   (printed in the shortest form that reads back to the same `f32`).
@@ -184,7 +185,7 @@ fn main() -> ExitCode {
         }
     };
     let mut out = String::with_capacity(rows.len() * 120);
-    out.push_str("t,qw,qx,qy,qz,bx,by,bz,sigma_inclination\n");
+    out.push_str("t,qw,qx,qy,qz,bx,by,bz,sigma_inclination,pxx,pxy,pyy\n");
     let mut refused = 0_u64;
     for (k, r) in rows.iter().enumerate() {
         let v = |i: usize| Vec3::new(r[i] as f32, r[i + 1] as f32, r[i + 2] as f32);
@@ -197,11 +198,12 @@ fn main() -> ExitCode {
         let q = filter.attitude();
         let b = filter.bias();
         let sigma = filter.inclination_sigma().unwrap_or(f32::NAN);
+        let p = filter.inclination_covariance().unwrap_or([f32::NAN; 3]);
         // Writing to a String cannot fail.
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{}",
-            r[0], q.w, q.x, q.y, q.z, b.x, b.y, b.z, sigma
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            r[0], q.w, q.x, q.y, q.z, b.x, b.y, b.z, sigma, p[0], p[1], p[2]
         );
     }
     if let Err(e) = std::fs::write(&files[1], out) {
@@ -210,8 +212,8 @@ fn main() -> ExitCode {
     }
     let c = filter.counts();
     eprintln!(
-        "estimator: {} samples, {} predicts, {} updates ({} forced), {} rejected, {} refused",
-        c.samples, c.predicts, c.updates, c.forced, c.rejected, refused
+        "estimator: {} samples, {} predicts, {} updates ({} forced), {} rejected, {} rest updates ({} restarts), {} refused",
+        c.samples, c.predicts, c.updates, c.forced, c.rejected, c.rests, c.restarts, refused
     );
     if refused > 0 {
         ExitCode::from(2)

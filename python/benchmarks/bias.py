@@ -361,15 +361,12 @@ def main(argv=None) -> int:
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    plot(out / "bias.png", curve, motion_res, dict(results)[turn_sc] if False else results_turn(results, turn_sc))
-    md = report(args, seeds, results, motion_sc, motion_res, curve, time.time() - t0)
+    turn_res = next(r for sc, r in results if sc is turn_sc)
+    plot(out / "bias.png", curve, motion_res, turn_res)
+    md = report(args, seeds, results, motion_sc, motion_res, turn_res, curve, time.time() - t0)
     (out / "bias.md").write_text(md)
     progress(f"wrote {out / 'bias.md'} and {out / 'bias.png'} in {time.time() - t0:.0f} s")
     return 0
-
-
-def results_turn(results, turn_sc) -> Dict[str, float]:
-    return next(r for sc, r in results if sc is turn_sc)
 
 
 def cell(v: float) -> str:
@@ -384,7 +381,7 @@ def cell(v: float) -> str:
     return f"{v:.3f}"
 
 
-def report(args, seeds, results, motion_sc, motion_res, curve, seconds) -> str:
+def report(args, seeds, results, motion_sc, motion_res, turn_res, curve, seconds) -> str:
     names = list(results[0][1].keys())
     ours = [n for n in names if n.startswith("quatprop")]
     header = "| scenario | seeds | " + " | ".join(names) + " | default / better peer |"
@@ -416,8 +413,8 @@ Synthetic streams whose truth is known (sensor model, motions and metrics: the d
 (0.6, −0.4, 0.25) °/s walking with 3·10⁻⁴ °/s/√s, an accelerometer with 0.02 m/s² noise and the hand's
 linear accelerations. Each peer runs as its users call it: `imufusion.Bias` (Fusion's `FusionBias`, its C
 code, fed °/s, defaults: 3 °/s for 3 s), `vqf.VQF(1/200).updateBatch(gyr, acc)["bias"]` (VQF's rest and
-motion bias estimation, defaults). quatprop: `BiasEstimator(window=1.0, gate=3 °/s)` with its default
-drift ({quatprop_default_drift()} rad/s/√s) through `quatprop.Stream(dt=1/200, precision="f32")`, given the
+motion bias estimation, defaults). quatprop: `BiasEstimator(window=1.0, gate=3 °/s)` with its defaults
+(`drift` and `rest_drift` 2e-5 rad/s/√s) through `quatprop.Stream(dt=1/200, precision="f32")`, given the
 accelerations (`acc=`), also gyro only and with the motion bias. Estimates are read every 0.1 s.
 
 ![bias estimation: the knob and one seed of each scenario](bias.png)
@@ -447,20 +444,10 @@ peers' points are their time constants.
 |---|---:|---:|
 {curve_rows if curve else '| (not run with --quick) | | |'}
 | **peers** | | |
-| FusionBias | {cell(motion_res[FUSION])} | {cell(results_turn_value(FUSION))} |
-| VQF | {cell(motion_res[VQF_NAME])} | {cell(results_turn_value(VQF_NAME))} |
+| **quatprop default** | {cell(motion_res[QUATPROP])} | {cell(turn_res[QUATPROP])} |
+| FusionBias | {cell(motion_res[FUSION])} | {cell(turn_res[FUSION])} |
+| VQF | {cell(motion_res[VQF_NAME])} | {cell(turn_res[VQF_NAME])} |
 """
-
-
-_TURN: Dict[str, float] = {}
-
-
-def results_turn_value(name: str) -> float:
-    return _TURN.get(name, float("nan"))
-
-
-def quatprop_default_drift() -> str:
-    return "1e-4"
 
 
 def versions_line() -> str:
@@ -482,7 +469,6 @@ def plot(path: Path, curve, motion_res, turn_res) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    _TURN.update(turn_res)
     fig, ax = plt.subplots(figsize=(7, 5))
     if curve:
         ax.plot([c[1] for c in curve], [c[2] for c in curve], "o-", label="quatprop, drift swept")

@@ -91,26 +91,26 @@ def quatprop_method(
     **integrate_kwargs,
 ) -> Method:
     """A quatprop configuration: `integrate_kwargs` go to quatprop.integrate (scheme, input, precision, …);
-    column (b) adds bias=quatprop.BiasEstimator(window=round(fs) (1 s), gate=3 °/s, memory=64), any of whose
+    column (b) adds bias=quatprop.BiasEstimator(window=1.0 (s), gate=3 °/s), any of whose
     arguments `bias_estimator` overrides or adds; use_acc=True also passes the accelerometer (m/s²) as
     integrate(acc=…), for the options that read it. `timing` describes how the configuration places a
     sample in time; it is needed unless the configuration's only timing option is an input model of
     QUATPROP_TIMING."""
-    estimator = {"gate": GATE, "memory": 64, **(bias_estimator or {})}
+    estimator = {"gate": GATE, **(bias_estimator or {})}
     if timing is None:
         if {"sample", "group_delay"} & integrate_kwargs.keys():
             raise ValueError(f"quatprop {name}: describe its timing (timing=…)")
         timing = QUATPROP_TIMING[integrate_kwargs.get("input", "history")]
 
     def run(gyr: np.ndarray, acc: np.ndarray, fs: float, estimate_bias: bool) -> np.ndarray:
-        bias = quatprop.BiasEstimator(**{"window": int(round(fs)), **estimator}) if estimate_bias else None
+        bias = quatprop.BiasEstimator(**{"window": 1.0, **estimator}) if estimate_bias else None
         with_acc = {"acc": acc} if use_acc and estimate_bias else {}  # acc feeds the estimator only
         q = quatprop.integrate(gyr, dt=1.0 / fs, bias=bias, **with_acc, **integrate_kwargs)
         return np.asarray(q, dtype=np.float64)
 
     arguments = ", ".join(f"{k}={v!r}" for k, v in integrate_kwargs.items())
     estimator_text = {
-        "window": "round(fs) (1 s)",
+        "window": "1.0 (s)",
         **estimator,
         "gate": f"{np.degrees(estimator['gate']):.3g} °/s",
     }

@@ -298,10 +298,11 @@ def write_markdown(results: List[TrialResult], path: Path, binary: Path, sets: S
     chosen = {c.trial: c for c in cv.choices}
     all_inside = np.concatenate([inside(r) for r in results])
     lines = [
+        BEGIN,
         f"<!-- Written by python/benchmarks/estimator.py: do not edit by hand. Regenerate with `{BUILD}` "
         f"then `{COMMAND}`. -->",
         "",
-        "# The example estimator on real recordings (BROAD), held out",
+        "## The example estimator on real recordings (BROAD), held out",
         "",
         f"*Written by `python/benchmarks/estimator.py` on {now}; regenerate with `{BUILD}` then "
         f"`{COMMAND}` ({elapsed:.0f} s on this machine: {os.cpu_count()} cores, {platform.machine()}, load "
@@ -315,9 +316,10 @@ def write_markdown(results: List[TrialResult], path: Path, binary: Path, sets: S
         "![Inclination error and quatprop's 3σ bound over time on two trials; per-trial RMS error of the three "
         "estimators](estimator.png)",
         "",
-        "## How it was run",
+        "### How it was run",
         "",
-        "- **quatprop**: `examples/estimator` (the filter of the guide above, `f32`), run as its command line "
+        "- **quatprop**: `examples/estimator` (`filter.rs`: the filter of the guide above, grown with a rest "
+        "detector and the sensor's timing; `f32`), run as its command line "
         "on the trial written as CSV (t = k/fs). Parameters from the sensor: `gyro_arw`, the gyro's white "
         "noise identified on the trial's own initial rest (`quatprop.allan`, docs/heldout.md's table), as a "
         "user identifies their sensor before use. Parameters still chosen on data ("
@@ -343,7 +345,7 @@ def write_markdown(results: List[TrialResult], path: Path, binary: Path, sets: S
         f"are the 95 % interval of a mean of n independent χ²₂ values, n the movement's duration over "
         f"{DECORRELATION:g} s (the errors' decorrelation time, twice the low-pass's).",
         "",
-        "## Inclination error (degrees), held out",
+        "### Inclination error (degrees), held out",
         "",
         "| trial | setting chosen without it | quatprop held out | quatprop in-sample | vqf 6D | imufusion 6D | "
         "inside 3σ (held out) | NEES [95 % bounds] |",
@@ -371,7 +373,7 @@ def write_markdown(results: List[TrialResult], path: Path, binary: Path, sets: S
         + f". Held out against in-sample: {rms(pooled(results, 'quatprop')) - in_sample_pooled:+.3f}° pooled. "
         f"Lowest share inside 3σ on a trial (held out): {100 * min(np.mean(inside(r)) for r in results):.1f} %.",
         "",
-        "## What each part is worth (in-sample setting, one part off at a time)",
+        "### What each part is worth (in-sample setting, one part off at a time)",
         "",
         "| configuration | pooled RMS (°) | inside 3σ (pooled) | lowest trial inside 3σ |",
         "|---|---:|---:|---:|",
@@ -383,7 +385,7 @@ def write_markdown(results: List[TrialResult], path: Path, binary: Path, sets: S
                      f"{100 * min(np.mean(x.inside) for x in sc):.1f} % |")
     lines += [
         "",
-        "## Run time",
+        "### Run time",
         "",
         "Whole-trial run time per method, summed over the trials (s): "
         + ", ".join(f"{m} {sum(r.seconds[m] for r in results):.2f}" for m in METHODS)
@@ -391,9 +393,25 @@ def write_markdown(results: List[TrialResult], path: Path, binary: Path, sets: S
         "C++; imufusion is a Python loop over samples calling C).",
         "",
         f"Data: {bm.ATTRIBUTION}. The tables and the figure are derived from it.",
-        "",
+        END,
     ]
-    path.write_text("\n".join(lines))
+    write_between_markers(path, "\n".join(lines))
+
+
+BEGIN = "<!-- results: begin -->"
+END = "<!-- results: end -->"
+
+
+def write_between_markers(path: Path, text: str) -> None:
+    """The results replace what lies between the page's markers (the guide above them is written by hand);
+    a page without them gets the results alone."""
+    old = path.read_text() if path.exists() else ""
+    if BEGIN in old and END in old:
+        head, rest = old.split(BEGIN, 1)
+        tail = rest.split(END, 1)[1]
+        path.write_text(head + text + tail)
+    else:
+        path.write_text(text + "\n")
 
 
 def setting_text(setting: tuple) -> str:
