@@ -149,7 +149,9 @@ impl<T: Real> FixedPeriod<T> {
 /// A timestamp that does not advance (a duplicate) or goes backwards (a wrapped difference beyond half the
 /// counter's range) is refused with a typed error and leaves the clock unchanged. A jump of more than
 /// 1.5 times the previous interval is counted as a gap ([`TickClock::gaps`]) and integrated honestly over
-/// its true length; the sample history then restarts by itself (its spacing changed).
+/// its true length. A `History` input model spans one missing sample and restarts by itself beyond
+/// [`History::GAP_RATIO`](crate::input::History::GAP_RATIO) times the previous interval (two or more
+/// missing).
 ///
 /// ```
 /// use quatprop::frontend::TickClock;
