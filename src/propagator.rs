@@ -534,8 +534,9 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// The bias subtracted from the samples grew by `delta` (rad/s, body axes): an estimator's bias
     /// correction, given here so that the samples the input model keeps for its next steps (corrected with
     /// the old bias) are lowered by `delta` too ([`InputModel::correct_bias`]). Subtract the same `delta`
-    /// from the samples from now on (e.g. [`FixedBias::correct`](crate::frontend::FixedBias::correct),
-    /// or [`BiasEstimator::correct_bias`](crate::frontend::BiasEstimator::correct_bias)): the next step then
+    /// from the samples from now on (e.g.
+    /// [`FixedBias::correct_bias`](crate::frontend::FixedBias::correct_bias) or
+    /// [`BiasEstimator::correct_bias`](crate::frontend::BiasEstimator::correct_bias)): the next step then
     /// integrates rates that all carry the new bias, where a model left alone would see a jump of
     /// `delta` between its kept samples and the new ones (a cubic through a step, for [`History`]). The
     /// attitude, accumulator and counters stay.
@@ -549,7 +550,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     ///     p.push(bias.apply(raw), 1.0e-3)?;
     /// }
     /// let delta = Vec3::new(0.0, 0.0, 0.01); // an estimator's update finds the bias
-    /// bias = bias.correct(delta)?;
+    /// bias.correct_bias(delta)?;
     /// p.correct_bias(delta)?;
     /// let before = p.attitude();
     /// p.push(bias.apply(raw), 1.0e-3)?; // 1 rad/s exactly, history included: 1 mrad

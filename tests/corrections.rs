@@ -98,7 +98,7 @@ fn bias_correction_moves_the_kept_samples() {
         corrected.push(s, h).unwrap();
         uncorrected.push(s, h).unwrap();
     }
-    bias = bias.correct(delta).unwrap();
+    bias.correct_bias(delta).unwrap();
     assert_eq!(bias.bias(), b_old + delta);
     corrected.correct_bias(delta).unwrap();
     // The same history, built from samples with the new bias removed.
@@ -164,12 +164,15 @@ fn refusals_leave_everything_unchanged() {
     );
     assert_eq!(big, kept);
     assert_eq!(p, before);
+    let mut fixed = FixedBias::new(Vec3::new(3e38_f32, 0.0, 0.0)).unwrap();
+    let kept = fixed;
     assert_eq!(
-        FixedBias::new(Vec3::new(3e38_f32, 0.0, 0.0))
-            .unwrap()
-            .correct(Vec3::new(3e38, 0.0, 0.0)),
+        fixed.correct_bias(Vec3::new(3e38, 0.0, 0.0)),
         Err(Error::NonFiniteRate)
     );
+    assert_eq!(fixed, kept);
+    assert_eq!(fixed.correct_bias(nan), Err(Error::NonFiniteRate));
+    assert_eq!(fixed, kept);
 
     let mut est = BiasEstimator::<f32>::from_samples(4, 1e-3, 0.1).unwrap();
     for _ in 0..8 {

@@ -491,7 +491,10 @@ impl Inner {
     pub fn correct_bias(&mut self, delta: Vec3<f32>) -> Result<(), Fail> {
         let bias = match self.front.bias {
             Bias::None => Bias::Fixed(FixedBias::new(delta)?),
-            Bias::Fixed(b) => Bias::Fixed(b.correct(delta)?),
+            Bias::Fixed(mut b) => {
+                b.correct_bias(delta)?;
+                Bias::Fixed(b)
+            }
             Bias::Estimator(mut e) => {
                 e.correct_bias(delta)?;
                 Bias::Estimator(e)

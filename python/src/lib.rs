@@ -990,7 +990,7 @@ impl NativeStream {
             let mut next = *s;
             match (&mut next.estimator, &mut next.fixed) {
                 (Some(e), _) => e.correct_bias(v)?,
-                (None, Some(f)) => *f = f.correct(v)?,
+                (None, Some(f)) => f.correct_bias(v)?,
                 (None, None) => next.fixed = Some(FixedBias::new(v)?),
             }
             next.p.correct_bias(v)?;

@@ -46,14 +46,29 @@ impl<T: Real> FixedBias<T> {
         self.bias
     }
 
-    /// The offset moved by `delta` (rad/s): an estimator's bias correction. Give the same `delta` to
-    /// [`Propagator::correct_bias`](crate::Propagator::correct_bias), so the samples the input model keeps
-    /// move with it.
+    /// Moves the offset by `delta` (rad/s): an estimator's bias correction (`b̂ ← b̂ + δb`), in place as
+    /// [`BiasEstimator::correct_bias`] and [`Propagator::correct_bias`](crate::Propagator::correct_bias)
+    /// do. Give the same `delta` to [`Propagator::correct_bias`](crate::Propagator::correct_bias), so the
+    /// samples the input model keeps move with it.
+    ///
+    /// ```
+    /// use quatprop::frontend::FixedBias;
+    /// use quatprop::{Error, Vec3};
+    /// let mut b = FixedBias::new(Vec3::new(0.01_f32, 0.0, 0.0))?;
+    /// b.correct_bias(Vec3::new(0.002, 0.0, -0.001))?;
+    /// let moved = Vec3::new(0.01 + 0.002, 0.0, -0.001);
+    /// assert_eq!(b.bias(), moved);
+    /// assert_eq!(b.correct_bias(Vec3::new(f32::NAN, 0.0, 0.0)), Err(Error::NonFiniteRate));
+    /// assert_eq!(b.bias(), moved); // unchanged
+    /// # Ok::<(), Error>(())
+    /// ```
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`] if `delta` or the new offset is NaN or infinite.
-    pub fn correct(self, delta: Vec3<T>) -> Result<Self, Error> {
-        Self::new(self.bias + delta)
+    /// [`Error::NonFiniteRate`] if `delta` or the new offset is NaN or infinite; the offset is then
+    /// unchanged.
+    pub fn correct_bias(&mut self, delta: Vec3<T>) -> Result<(), Error> {
+        *self = Self::new(self.bias + delta)?;
+        Ok(())
     }
 }
 

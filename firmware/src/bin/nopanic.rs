@@ -20,7 +20,7 @@
 //! (`from_diagonal`, `from_matrix`, `predict`, `predict_compensated`, `update`, `matrix`, `variances`), once; and
 //! `Propagator::rotate_body`, `rotate_reference` and `correct_bias` for every input model × accumulator
 //! (beside the bursts: `correct_bias` is the input model's, the rotations go through the accumulator), with
-//! `FixedBias::correct` in the front end. The `nopanic-config` image calls the same three on `Configured`.
+//! `FixedBias::correct_bias` in the front end. The `nopanic-config` image calls the same three on `Configured`.
 //!
 //! With the feature `nopanic-config`, the image is the run-time configuration instead: a
 //! `config::Configured` built from an opaque `Config`, every call on it with rate samples and delta angles
@@ -208,9 +208,10 @@ fn front_end() {
         Ok(a) => a.apply(s),
         Err(_) => s,
     };
-    if let Ok(b) = FixedBias::new(black_box(Vec3::new(0.01_f32, 0.0, 0.0))) {
+    if let Ok(mut b) = FixedBias::new(black_box(Vec3::new(0.01_f32, 0.0, 0.0))) {
         black_box(b.apply(s));
-        if let Ok(b) = b.correct(black_box(Vec3::new(1.0e-4, 0.0, -2.0e-4))) {
+        let delta = black_box(Vec3::new(1.0e-4, 0.0, -2.0e-4));
+        if b.correct_bias(delta).is_ok() {
             black_box(b.apply(s));
         }
     }
