@@ -9,8 +9,8 @@
 //! - **Attitude**: a [`Propagator`] (ExpMap + [`Hold`] + FirstOrder) integrates `ω_m − b̂`, the bias
 //!   estimate `b̂` held in a [`FixedBias`]. Samples come at a fixed period. [`Hold`] takes each sample as
 //!   the mean rate over the period that ends at it (as VQF integrates): a MEMS gyro's output is filtered
-//!   and late, and on BROAD's fast rotations `History` (the sample as the rate at its instant, half a
-//!   period later) measured 1.64° instead of 1.03° on trial 07 (docs/estimator.md).
+//!   and late. What is left of its lag is the sensor's group delay ([`Params::group_delay`]): the
+//!   attitude reported is carried forward by it at the latest corrected rate.
 //! - **Error state** `x = (δθ, δb)`: `q = q̂ ⊗ exp_q(δθ)` (attitude error in the **body** frame) and
 //!   `b = b̂ + δb`. Its covariance is kept as `U D Uᵀ` ([`Ud`]).
 //! - **Predict**: every [`Params::predict_every`] gyro samples, [`Step::between`] the attitude at the
@@ -46,11 +46,17 @@
 //!   [`Params::gate_timeout`] seconds of consecutive rejections the next update is taken anyway
 //!   (counted in [`Counts::forced`]).
 //! - **Correction and reset**: `x` from the two sequential Bierman updates (`x ← x + K (z − h·x)`) is
-//!   folded into the nominal state: [`Propagator::rotate_body`]`(δθ)`, [`FixedBias::correct`]`(δb)` and
+//!   folded into the nominal state: [`Propagator::rotate_body`]`(δθ)`, [`FixedBias::correct_bias`]`(δb)` and
 //!   [`Propagator::correct_bias`]`(δb)` (the same `δb`, so the input model's kept samples move with it),
 //!   and `x` is reset to zero. For a body-frame error the reset's covariance transform is
 //!   `G = I − ½[δθ×]` on the attitude block, `I` to first order in `|δθ|` (a few mrad per update): it is
 //!   taken as `I`, the covariance is left as the update made it.
+//! - **Rest detector** ([`Params::rest_window`]): a [`BiasEstimator`] fed the raw gyro and the
+//!   accelerometer; each still window it takes ([`BiasEstimator::last_window`]) is a measurement of all
+//!   three bias components (three scalar rows on `δb`, its mean's variance), the vertical one included,
+//!   which the accelerometer alone never observes. A window that disagrees with the filter's bias beyond
+//!   their joint uncertainty (χ²₃ at 1 − 10⁻⁴) is a fault of the filter: its bias restarts from the window
+//!   ([`Counts::restarts`]), which holds a bias that ran away while the body moved.
 //! - **Inclination uncertainty**: the horizontal components of the attitude error in the reference frame
 //!   (`R(q̂) δθ`) are the components of `δθ` normal to `ĝ`; [`Filter::inclination_sigma`] is the square
 //!   root of the larger eigenvalue of their 2 × 2 covariance. For an isotropic 2D Gaussian error the
