@@ -929,6 +929,20 @@ impl NativeStream {
         }
     }
 
+    /// The bias estimator's variance per axis ((rad/s)², `BiasEstimator::variance`: the last update's,
+    /// grown by the drift since; `f64::MAX` before its first still window), or None without one.
+    fn bias_variance(&self) -> Option<[f64; 3]> {
+        fn of<T: Real>(s: &Session<T>) -> Option<[f64; 3]> {
+            let v = s.estimator?.variance();
+            let f = |x: T| if x == T::MAX { f64::MAX } else { x.to_f64() };
+            Some([f(v.x), f(v.y), f(v.z)])
+        }
+        match &self.now {
+            Sessions::F32(s) => of(s),
+            Sessions::F64(s) => of(s),
+        }
+    }
+
     /// Steps taken, samples refused (skipped or raised), saturated samples counted.
     fn counts(&self) -> (u64, u64, u64) {
         match &self.now {

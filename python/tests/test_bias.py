@@ -275,3 +275,22 @@ def test_still_windows_are_learned(noise_density, acc_seed):
     refused = [k + 1 for k in range(1, 30) if np.array_equal(b[k], b[k - 1])]
     assert refused == [], f"still windows not learned (ending at these seconds): {refused}"
     np.testing.assert_allclose(b[-1], B0, atol=0.005 * DEG)
+
+
+def test_bias_variance_is_the_estimators():
+    """`Stream.bias_variance`: float max before the first still window, then the estimator's variance,
+    shrinking as still windows are learned and growing by the drift while the body moves."""
+    rng = np.random.default_rng(5)
+    s = quatprop.Stream(dt=1e-3, precision="f64", bias=quatprop.BiasEstimator(1.0, 0.05, drift=1e-3))
+    s.update(1e-3 * rng.standard_normal((500, 3)))
+    assert np.all(s.bias_variance == np.finfo(np.float64).max)
+    s.update(1e-3 * rng.standard_normal((1500, 3)))
+    after_one = s.bias_variance
+    assert np.all(after_one > 0) and np.all(after_one < 1e-8)
+    s.update(1e-3 * rng.standard_normal((3000, 3)))
+    # Four more windows: smaller on the whole (each axis's first figure rests on its own 7-dof scatter).
+    assert s.bias_variance.mean() < after_one.mean()
+    moving = s.bias_variance
+    s.update(np.tile([0.5, 0.0, 0.0], (2000, 1)))  # 2 s of motion: +drift² · 2 s
+    np.testing.assert_allclose(s.bias_variance - moving, 1e-6 * 2.0, rtol=1e-6)
+    assert quatprop.Stream(dt=1e-3).bias_variance is None

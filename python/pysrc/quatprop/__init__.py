@@ -653,6 +653,14 @@ class Stream:
         return None if b is None else _np.array(b)
 
     @property
+    def bias_variance(self) -> _Optional[_np.ndarray]:
+        """The bias estimator's variance per axis ((rad/s)²): its last update's, grown by its drift since
+        (``float`` max before its first still window); None without an estimator. The motion residual's
+        uncertainty is not in it."""
+        v = self._native.bias_variance()
+        return None if v is None else _np.array(v)
+
+    @property
     def steps(self) -> int:
         """Integration steps taken (an input model that starts on its first sample takes one fewer)."""
         return self._native.counts()[0]
