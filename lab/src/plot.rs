@@ -24,6 +24,9 @@ pub struct Series {
     pub line: bool,
     pub marker: bool,
     pub dashed: bool,
+    /// The palette entry to draw it in (`None`: its place in the list; past the palette, dashed with square
+    /// markers): series that belong together share one.
+    pub colour: Option<usize>,
 }
 
 impl Series {
@@ -34,6 +37,18 @@ impl Series {
             line: true,
             marker: false,
             dashed: false,
+            colour: None,
+        }
+    }
+    /// Markers only, no line.
+    pub fn markers(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            name: name.into(),
+            points,
+            line: false,
+            marker: true,
+            dashed: false,
+            colour: None,
         }
     }
     pub fn both(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
@@ -43,10 +58,16 @@ impl Series {
             line: true,
             marker: true,
             dashed: false,
+            colour: None,
         }
     }
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
+        self
+    }
+    /// Drawn in the palette's entry `i` (modulo its length), whatever its place in the list.
+    pub fn colour(mut self, i: usize) -> Self {
+        self.colour = Some(i);
         self
     }
 }
@@ -193,9 +214,10 @@ pub fn plot(
         xml(y.label)
     );
     for (i, se) in series.iter().enumerate() {
-        let c = COLORS[i % COLORS.len()];
-        // Past the palette: the same colours again, dashed with square markers.
-        let second_round = i >= COLORS.len();
+        let c = COLORS[se.colour.unwrap_or(i) % COLORS.len()];
+        // Past the palette (a series without a colour of its own): the same colours again, dashed with
+        // square markers.
+        let second_round = se.colour.is_none() && i >= COLORS.len();
         let p: Vec<(f64, f64)> = se
             .points
             .iter()

@@ -993,6 +993,7 @@ fn study(ctx: &mut Ctx, total: u64, page: bool) -> String {
                 line: false,
                 marker: true,
                 dashed: false,
+                colour: None,
             });
         }
     }

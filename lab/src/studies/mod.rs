@@ -25,6 +25,7 @@ registry! {
     config_cost::ConfigCost,
     scene_table::Scenes,
     sensor::Sensor,
+    noise::Noise,
     coning_drift::ConingDrift,
     time_base::TimeBaseStudy,
     long_horizon::LongHorizon,
