@@ -19,7 +19,7 @@ use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
-    MotionBias, SampleTiming, TickClock,
+    CalibrationEstimator, MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};
@@ -280,14 +280,57 @@ struct Session<T: Real> {
     alignment: Option<Alignment<T>>,
     fixed: Option<FixedBias<T>>,
     estimator: Option<BiasEstimator<T>>,
-    /// The residual bias in motion, from the accelerometer, after the estimator.
-    motion: Option<MotionBias<T>>,
+    /// What is learned in motion from the accelerometer, after the estimator.
+    motion: Option<Motion<T>>,
     refused: u64,
     /// The sum of the refused delta angles (rad, body axes; finite ones only): rotation not integrated.
     lost: [f64; 3],
     /// What a row means in time, and the rate of the last accepted row.
     timing: SampleTiming<T>,
     last_rate: Vec3<T>,
+}
+
+/// What a stream learns in motion from the accelerometer, after the rest estimator.
+#[derive(Clone, Copy)]
+enum Motion<T> {
+    /// The residual bias (VQF's motion bias estimation).
+    Bias(MotionBias<T>),
+    /// The gain (scale and misalignment) and the residual bias.
+    Calibration(CalibrationEstimator<T>),
+}
+
+impl<T: Real> Motion<T> {
+    fn at_rest(&mut self) {
+        match self {
+            Motion::Bias(m) => m.at_rest(),
+            Motion::Calibration(c) => c.at_rest(),
+        }
+    }
+
+    /// The rate with what has been learned taken out.
+    fn correct(&self, s: GyroSample<T>) -> GyroSample<T> {
+        match self {
+            Motion::Bias(m) => GyroSample {
+                rate: s.rate - m.bias(),
+                ..s
+            },
+            Motion::Calibration(c) => c.correct(s),
+        }
+    }
+
+    fn update(&mut self, rate: Vec3<T>, accel: Vec3<T>, dt: T) -> Result<(), Error> {
+        match self {
+            Motion::Bias(m) => m.update(rate, accel, dt),
+            Motion::Calibration(c) => c.update(rate, accel, dt),
+        }
+    }
+
+    fn bias(&self) -> Vec3<T> {
+        match self {
+            Motion::Bias(m) => m.bias(),
+            Motion::Calibration(c) => c.bias(),
+        }
+    }
 }
 
 impl<T: Real> Session<T> {
@@ -394,7 +437,19 @@ impl<T: Real> Session<T> {
             .map_err(config_error)?;
         let motion = match (&args.estimator, &clock) {
             (Some(e), Clock::Fixed(_)) if e.motion => {
-                Some(MotionBias::new(args.period.unwrap_or(f64::NAN)).map_err(config_error)?)
+                let period = args.period.unwrap_or(f64::NAN);
+                Some(match e.calibrate {
+                    None => Motion::Bias(MotionBias::new(period).map_err(config_error)?),
+                    Some((sensitivity, misalignment, noise)) => Motion::Calibration(
+                        CalibrationEstimator::with_motion_noise(
+                            period,
+                            sensitivity,
+                            misalignment,
+                            noise.unwrap_or(CalibrationEstimator::<T>::DEFAULT_MOTION_NOISE),
+                        )
+                        .map_err(config_error)?,
+                    ),
+                })
             }
             (Some(e), _) if e.motion => {
                 return Err(PyValueError::new_err(
@@ -468,12 +523,12 @@ impl<T: Real> Session<T> {
                 if e.bias() != rest {
                     m.at_rest(); // a window learned: the rest estimate holds, the residual restarts
                 }
-                let residual = m.bias();
+                let corrected = m.correct(s);
                 if let (Some(acc), Clock::Fixed(p)) = (aux.accel, &self.clock) {
                     // A refused sample (NaN) leaves it unchanged; the propagator refuses the sample too.
                     let _ = m.update(s.rate, acc, p.period());
                 }
-                s.rate = s.rate - residual;
+                s = corrected;
             }
         }
         s
@@ -609,6 +664,9 @@ struct EstimatorArgs {
     accel_gate: Option<f64>,
     span: Option<f64>,
     motion: bool,
+    /// With `motion`: learn the gain too (`CalibrationEstimator`): the sensitivity's and the
+    /// misalignment's prior sigmas and the measurement noise (rad/s; None: the core's default).
+    calibrate: Option<(f64, f64, Option<f64>)>,
 }
 
 /// A calibration as Python passes it: offset (rad/s), sensitivity, misalignment (rows).
@@ -922,6 +980,30 @@ impl NativeStream {
                 (None, None) => return None,
             };
             Some([b.x.to_f64(), b.y.to_f64(), b.z.to_f64()])
+        }
+        match &self.now {
+            Sessions::F32(s) => of(s),
+            Sessions::F64(s) => of(s),
+        }
+    }
+
+    /// What `CalibrationEstimator` has learned: the correction as a calibration (offset rad/s,
+    /// sensitivity, misalignment rows), the gain `I − G` (rows) and each of its terms' standard deviation;
+    /// None without one.
+    #[allow(clippy::type_complexity)]
+    fn learned_calibration(&self) -> Option<(CalibrationArgs, [[f64; 3]; 3], [[f64; 3]; 3])> {
+        fn of<T: Real>(s: &Session<T>) -> Option<(CalibrationArgs, [[f64; 3]; 3], [[f64; 3]; 3])> {
+            let Some(Motion::Calibration(c)) = s.motion else {
+                return None;
+            };
+            let v = |v: Vec3<T>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
+            let m = |m: [[T; 3]; 3]| m.map(|r| r.map(|x| x.to_f64()));
+            let cal = c.calibration();
+            Some((
+                (v(cal.offset()), v(cal.sensitivity()), m(cal.misalignment())),
+                m(c.gain()),
+                m(c.gain_std_dev()),
+            ))
         }
         match &self.now {
             Sessions::F32(s) => of(s),

@@ -80,6 +80,31 @@ impl<T: Real> Calibration<T> {
         }
     }
 
+    /// No correction: zero offset, unit sensitivity, identity misalignment.
+    #[must_use]
+    pub fn identity() -> Self {
+        let (o, l) = (T::ZERO, T::ONE);
+        Self {
+            offset: Vec3::ZERO,
+            sensitivity: Vec3::new(l, l, l),
+            misalignment: [[l, o, o], [o, l, o], [o, o, l]],
+        }
+    }
+
+    /// `ω = m·(r − offset)` as a calibration: the sensitivity is `m`'s diagonal, the misalignment `m`'s
+    /// columns divided by it. For a gain near the identity (what
+    /// [`CalibrationEstimator`](super::CalibrationEstimator) learns: each term within 5 %), unchecked.
+    pub(super) fn from_gain(offset: Vec3<T>, m: [[T; 3]; 3]) -> Self {
+        let s = [m[0][0], m[1][1], m[2][2]];
+        Self {
+            offset,
+            sensitivity: Vec3::new(s[0], s[1], s[2]),
+            misalignment: core::array::from_fn(|i| {
+                core::array::from_fn(|j| if i == j { T::ONE } else { m[i][j] / s[j] })
+            }),
+        }
+    }
+
     /// The calibrated sample (the saturation flag kept).
     #[inline]
     #[must_use]

@@ -7,6 +7,7 @@
 //! | [`Calibration`] | a reading in the sensor's own (non-orthogonal, mis-scaled) axes | the calibrated rate: offset, per-axis sensitivity, misalignment |
 //! | [`Alignment`] | a sample in sensor axes | the same sample in body axes (one of the 24 [`AxisRemap`]s, or a rotation matrix) |
 //! | [`FixedBias`], [`BiasEstimator`] | a biased sample | the sample minus the bias (fixed, or learned while the body is still) |
+//! | [`CalibrationEstimator`] | a sample corrected at rest, and the accelerometer | the gain (scale and misalignment) and residual bias learned in motion, as a [`Calibration`] |
 //! | [`MotionBias`] | a sample corrected at rest, and the accelerometer | the residual bias learned in motion (VQF's motion bias estimation; the accelerometer never touches the attitude) |
 //! | [`FixedPeriod`] | a sample period given once | the `dt` of each sample, summing to `k·period` exactly |
 //! | [`TickClock`] | the sensor's own timestamps (integer ticks, wrapping) | the `dt` of each sample, exact, with gaps counted |
@@ -39,6 +40,8 @@
 mod alignment;
 mod bias;
 mod calibration;
+mod calibration_estimator;
+mod inclination;
 mod motion_bias;
 mod scale;
 mod time;
@@ -47,6 +50,7 @@ mod timing;
 pub use alignment::{Alignment, AxisRemap, ROTATION_TOLERANCE};
 pub use bias::{Aux, BiasEstimator, FixedBias};
 pub use calibration::Calibration;
+pub use calibration_estimator::CalibrationEstimator;
 pub use motion_bias::MotionBias;
 pub use scale::CountScale;
 pub use time::{FixedPeriod, TickClock};

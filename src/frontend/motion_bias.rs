@@ -10,111 +10,8 @@
 //! turns, every component of the bias becomes observable. The shadow attitude (gyro and accelerometer) is
 //! internal: the accelerometer informs the bias, never the attitude the propagator integrates.
 
-use crate::{Error, Quat, Real, Vec3};
-
-/// A second-order Butterworth low-pass filter over up to 9 channels, started by averaging its first `τ`
-/// of input (as VQF does: no start-up transient from a single sample).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-struct LowPass<T> {
-    /// Direct form II transposed state; while averaging, `s0` holds the sum.
-    s0: [T; 9],
-    s1: [T; 9],
-    /// Samples averaged so far; `None` once filtering.
-    count: Option<u32>,
-}
-
-/// The filter's coefficients `b0, b1, b2, a1, a2` and the samples to average first.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-struct Butterworth<T> {
-    b: [T; 3],
-    a: [T; 2],
-    average: u32,
-}
-
-impl<T: Real> Butterworth<T> {
-    /// Time constant `tau` (s) of the non-oscillating part of the step response (cut-off `√2/(2πτ)`),
-    /// sample period `ts` (s); a pass-through for `tau < ts/2`.
-    fn new(tau: f64, ts: f64) -> Self {
-        let average = libm::ceil(tau / ts).clamp(1.0, f64::from(u32::MAX)) as u32;
-        if tau < ts / 2.0 {
-            return Self {
-                b: [T::ONE, T::ZERO, T::ZERO],
-                a: [T::ZERO, T::ZERO],
-                average: 1,
-            };
-        }
-        let fc = core::f64::consts::SQRT_2 / (2.0 * core::f64::consts::PI * tau);
-        let c = libm::tan(core::f64::consts::PI * fc * ts);
-        let d = c * c + core::f64::consts::SQRT_2 * c + 1.0;
-        let b0 = c * c / d;
-        Self {
-            b: [T::from_f64(b0), T::from_f64(2.0 * b0), T::from_f64(b0)],
-            a: [
-                T::from_f64(2.0 * (c * c - 1.0) / d),
-                T::from_f64((1.0 - core::f64::consts::SQRT_2 * c + c * c) / d),
-            ],
-            average,
-        }
-    }
-}
-
-impl<T: Real> LowPass<T> {
-    fn new() -> Self {
-        Self {
-            s0: [T::ZERO; 9],
-            s1: [T::ZERO; 9],
-            count: Some(0),
-        }
-    }
-
-    /// The filtered `x` (the first `x.len()` channels; at most 9).
-    fn step<const N: usize>(&mut self, x: [T; N], f: &Butterworth<T>) -> [T; N] {
-        let mut y = [T::ZERO; N];
-        match self.count {
-            Some(n) => {
-                let n = n.saturating_add(1);
-                let inv = T::ONE / T::from_f64(f64::from(n));
-                for (i, (yi, xi)) in y.iter_mut().zip(x).enumerate().take(9) {
-                    self.s0[i] += xi;
-                    *yi = self.s0[i] * inv;
-                }
-                if n >= f.average {
-                    // The steady state of the mean: y = x = mean in the filter's equations.
-                    for (i, &m) in y.iter().enumerate().take(9) {
-                        self.s0[i] = m * (T::ONE - f.b[0]);
-                        self.s1[i] = m * (f.b[2] - f.a[1]);
-                    }
-                    self.count = None;
-                } else {
-                    self.count = Some(n);
-                }
-            }
-            None => {
-                for (i, (yi, xi)) in y.iter_mut().zip(x).enumerate().take(9) {
-                    *yi = f.b[0] * xi + self.s0[i];
-                    self.s0[i] = f.b[1] * xi - f.a[0] * *yi + self.s1[i];
-                    self.s1[i] = f.b[2] * xi - f.a[1] * *yi;
-                }
-            }
-        }
-        y
-    }
-}
-
-/// `x` clipped to `[−c, c]`.
-fn clip<T: Real>(x: T, c: T) -> T {
-    if x > c {
-        c
-    } else if x < -c {
-        -c
-    } else {
-        x
-    }
-}
+use super::inclination::{clip, inverse, Inclination, LowPass};
+use crate::{Error, Real, Vec3};
 
 /// The residual gyro bias in motion, learned from the accelerometer (VQF's motion bias estimation).
 ///
@@ -142,14 +39,10 @@ fn clip<T: Real>(x: T, c: T) -> T {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MotionBias<T> {
-    filter: Butterworth<T>,
-    /// The sample period the filter was designed for (s): each update's `dt` should be near it.
-    period: T,
-    gyr_quat: Quat<T>,
-    acc_quat: Quat<T>,
-    acc_lp: LowPass<T>,
-    r_lp: LowPass<T>,
-    bias_lp: LowPass<T>,
+    /// The shadow attitude and its inclination correction, designed for the sample period given.
+    inclination: Inclination<T>,
+    r_lp: LowPass<T, 9>,
+    bias_lp: LowPass<T, 2>,
     bias: Vec3<T>,
     /// The bias covariance, in (0.01 °/s)² as VQF keeps it.
     p: [[T; 3]; 3],
@@ -184,11 +77,7 @@ impl<T: Real> MotionBias<T> {
         let t = T::from_f64;
         let p0t = t(p0);
         Ok(Self {
-            filter: Butterworth::new(3.0, ts),
-            period: t(ts),
-            gyr_quat: Quat::IDENTITY,
-            acc_quat: Quat::IDENTITY,
-            acc_lp: LowPass::new(),
+            inclination: Inclination::new(ts),
             r_lp: LowPass::new(),
             bias_lp: LowPass::new(),
             bias: Vec3::ZERO,
@@ -246,7 +135,7 @@ impl<T: Real> MotionBias<T> {
         }
         let before = *self;
         self.step(rate, accel, dt);
-        if !(self.bias.is_finite() && self.gyr_quat.is_finite() && self.acc_quat.is_finite()) {
+        if !(self.bias.is_finite() && self.inclination.is_finite()) {
             *self = before;
             return Err(Error::NonFiniteResult);
         }
@@ -256,31 +145,12 @@ impl<T: Real> MotionBias<T> {
     fn step(&mut self, rate: Vec3<T>, accel: Vec3<T>, dt: T) {
         // The shadow attitude: the corrected rate integrated.
         let w = rate - self.bias;
-        let q = self.gyr_quat * Quat::from_rotation_vector(w * dt);
-        self.gyr_quat = q.normalized().unwrap_or(self.gyr_quat);
-        if accel == Vec3::ZERO {
-            return;
-        }
-        let ts = self.period;
-        // The accelerometer in the shadow reference frame, low-passed, then through the inclination
-        // correction so far.
-        let a = self.gyr_quat.rotate(accel);
-        let a = self.acc_lp.step([a.x, a.y, a.z], &self.filter);
-        let a = self.acc_quat.rotate(Vec3::new(a[0], a[1], a[2]));
-        let Some(a) = a.normalized() else {
+        let Some(o) = self.inclination.step(w, accel, dt) else {
             return;
         };
-        // The inclination correction that brings it to the vertical.
-        let qw = ((a.z + T::ONE) * T::HALF).max(T::ZERO).sqrt();
-        let corr = if qw > T::from_f64(1e-6) {
-            Quat::new(qw, T::HALF * a.y / qw, -T::HALF * a.x / qw, T::ZERO)
-        } else {
-            Quat::new(T::ZERO, T::ONE, T::ZERO, T::ZERO)
-        };
-        self.acc_quat = (corr * self.acc_quat).normalized().unwrap_or(self.acc_quat);
+        let [cx, cy] = o.correction_rate;
         // The bias Kalman filter: R of the 6D attitude, R·b and R low-passed like the measurement.
-        let q6 = self.acc_quat * self.gyr_quat;
-        let m = q6.to_rotation_matrix();
+        let m = o.rotation;
         let r = [
             m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
         ];
@@ -289,11 +159,12 @@ impl<T: Real> MotionBias<T> {
             r[0] * b.x + r[1] * b.y + r[2] * b.z,
             r[3] * b.x + r[4] * b.y + r[5] * b.z,
         ];
-        let r = self.r_lp.step(r, &self.filter);
-        let rb = self.bias_lp.step(rb, &self.filter);
+        let f = &self.inclination.filter;
+        let r = self.r_lp.step(r, f);
+        let rb = self.bias_lp.step(rb, f);
         let e = [
-            -a.y / ts + rb[0] - (r[0] * b.x + r[1] * b.y + r[2] * b.z),
-            a.x / ts + rb[1] - (r[3] * b.x + r[4] * b.y + r[5] * b.z),
+            cx + rb[0] - (r[0] * b.x + r[1] * b.y + r[2] * b.z),
+            cy + rb[1] - (r[3] * b.x + r[4] * b.y + r[5] * b.z),
             -(r[6] * b.x + r[7] * b.y + r[8] * b.z),
         ];
         let w = [self.w_motion, self.w_motion, self.w_vertical];
@@ -352,23 +223,3 @@ fn transpose<T: Real>(a: M3<T>) -> M3<T> {
     ]
 }
 
-/// `a⁻¹` by cofactors, if `det a` is finite and non-zero.
-fn inverse<T: Real>(a: M3<T>) -> Option<M3<T>> {
-    let c = |i: usize, j: usize| {
-        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
-        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
-        a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]
-    };
-    let det = a[0][0] * c(0, 0) + a[0][1] * c(0, 1) + a[0][2] * c(0, 2);
-    if !(det.is_finite() && det != T::ZERO) {
-        return None;
-    }
-    let inv = T::ONE / det;
-    let mut out = [[T::ZERO; 3]; 3];
-    for (i, row) in out.iter_mut().enumerate() {
-        for (j, e) in row.iter_mut().enumerate() {
-            *e = c(j, i) * inv;
-        }
-    }
-    Some(out)
-}

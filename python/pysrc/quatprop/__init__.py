@@ -32,6 +32,7 @@ __all__ = [
     "calibrate",
     "RefusedSample",
     "BiasEstimator",
+    "CalibrationEstimator",
     "CountScale",
     "allan",
     "to_euler_zyx",
@@ -130,11 +131,13 @@ class BiasEstimator:
             (e.g. 0.5 m/s²); None: no gate (the accelerations' flatness is tested whenever ``acc`` is given).
         temperature_span: the temperature spread (standard deviation, the unit of ``temperature``) from
             which the bias(T) line is applied; None: no temperature model.
-        motion: also learn the residual bias in motion from the accelerometer (the core's
-            ``frontend::MotionBias``: VQF's motion bias estimation, on the rates corrected at rest; it
-            restarts at zero whenever a still window is learned). Needs ``acc`` (in the gyro's axes,
-            m/s² or any unit) and a fixed period (``dt=``). The accelerometer informs the bias only; the
-            attitude is the gyro's. :attr:`Stream.bias` is then the sum of both: what is subtracted.
+        motion: also learn the residual bias in motion from the accelerometer (``True``: the core's
+            ``frontend::MotionBias``, VQF's motion bias estimation, on the rates corrected at rest; it
+            restarts at zero whenever a still window is learned), or the gyro's gain (scale and
+            misalignment) with it (a :class:`CalibrationEstimator`; :attr:`Stream.learned_calibration`
+            shows what it learned). Needs ``acc`` (in the gyro's axes, m/s² or any unit) and a fixed
+            period (``dt=``). The accelerometer informs the rates only; the attitude is the gyro's.
+            :attr:`Stream.bias` is then the sum of both biases: what is subtracted.
         period: the sample period (s), from which the window's samples are counted; None: the stream's
             ``dt``. Needed with timestamps and with ticks (``tick_hz`` is the counter's rate, not the
             sample rate).
@@ -149,7 +152,7 @@ class BiasEstimator:
     initial_sigma: _Optional[float] = None
     accel_gate: _Optional[float] = None
     temperature_span: _Optional[float] = None
-    motion: bool = False
+    motion: "bool | CalibrationEstimator" = False
     period: _Optional[float] = None
 
     def _native(self):
@@ -174,7 +177,40 @@ class BiasEstimator:
 
         return _EstimatorArgs(float(self.window), float(self.gate), opt(self.period), opt(self.drift),
                               opt(self.rest_drift), opt(self.noise_density), initial, opt(self.accel_gate),
-                              opt(self.temperature_span), bool(self.motion))
+                              opt(self.temperature_span), bool(self.motion),
+                              self.motion._native() if isinstance(self.motion, CalibrationEstimator) else None)
+
+
+@_dataclass(frozen=True)
+class CalibrationEstimator:
+    """Learns the gyro's gain — per-axis scale factor and axis misalignment, ``ω = (I − G)(ω_c − b)`` —
+    and its residual bias in motion from the accelerometer (the core's ``frontend::CalibrationEstimator``):
+    give it as ``BiasEstimator(motion=CalibrationEstimator(...))``.
+
+    The accelerometer, low-passed (τ = 3 s) in the shadow attitude's frame, shows how the inclination
+    drifts; a wrong gain makes it drift in proportion to how the body turns, which a Kalman filter on
+    twelve states (three of bias, nine of gain) learns. A term shows only while the body turns about its
+    axis at an attitude where that turn tilts: what has not been seen stays at its prior, and
+    :attr:`Stream.learned_calibration` gives each term's standard deviation.
+
+    Attributes:
+        sensitivity_sigma: prior standard deviation of each scale factor (dimensionless; a datasheet's
+            sensitivity tolerance, e.g. 0.01 for ±1 %).
+        misalignment_sigma: prior standard deviation of each cross-axis term (rad; a datasheet's
+            cross-axis sensitivity, e.g. 0.0087 for ±0.5°).
+        motion_noise: the measurement noise (rad/s): the spread of the low-passed inclination drift that
+            is not the gyro's (linear acceleration). None: the core's ``DEFAULT_MOTION_NOISE``
+            (0.173 °/s, chosen by leave-one-trial-out on BROAD; docs/calibration.md). Smaller learns
+            faster and trusts the accelerometer more.
+    """
+
+    sensitivity_sigma: float
+    misalignment_sigma: float
+    motion_noise: _Optional[float] = None
+
+    def _native(self):
+        return (float(self.sensitivity_sigma), float(self.misalignment_sigma),
+                None if self.motion_noise is None else float(self.motion_noise))
 
 
 @_dataclass(frozen=True)
@@ -191,6 +227,7 @@ class _EstimatorArgs:
     accel_gate: _Optional[float]
     span: _Optional[float]
     motion: bool
+    calibrate: _Optional[tuple]
 
 
 def _fit(f) -> _Optional[dict]:
@@ -651,6 +688,20 @@ class Stream:
         temperature: a sample's is moved along the fitted bias(T) line to its temperature."""
         b = self._native.bias()
         return None if b is None else _np.array(b)
+
+    @property
+    def learned_calibration(self) -> _Optional[dict]:
+        """What a :class:`CalibrationEstimator` has learned so far; None without one. A dict:
+        ``calibration`` (a :class:`Calibration` that applies the correction: offset = the residual bias,
+        rad/s; give it with the rest bias removed), ``gain`` (``I − G``, 3×3: what multiplies the
+        bias-free rate) and ``gain_std_dev`` (3×3, each term's standard deviation: a term still at its
+        prior sigma has not been observed)."""
+        c = self._native.learned_calibration()
+        if c is None:
+            return None
+        (o, s, m), gain, sd = c
+        return {"calibration": Calibration(tuple(o), tuple(s), tuple(tuple(r) for r in m)),
+                "gain": _np.array(gain), "gain_std_dev": _np.array(sd)}
 
     @property
     def bias_variance(self) -> _Optional[_np.ndarray]:

@@ -75,8 +75,18 @@ class BiasEstimator:
     initial_sigma: Optional[float] = None
     accel_gate: Optional[float] = None
     temperature_span: Optional[float] = None
-    motion: bool = False
+    motion: Union[bool, CalibrationEstimator] = False
     period: Optional[float] = None
+
+@dataclass(frozen=True)
+class CalibrationEstimator:
+    """Learns the gyro's gain (scale, misalignment) and residual bias in motion from the accelerometer:
+    `BiasEstimator(motion=CalibrationEstimator(...))`. Prior sigmas: `sensitivity_sigma` (dimensionless),
+    `misalignment_sigma` (rad); `motion_noise` (rad/s; None: 0.173 °/s)."""
+
+    sensitivity_sigma: float
+    misalignment_sigma: float
+    motion_noise: Optional[float] = None
 
 @dataclass(frozen=True)
 class CountScale:
@@ -141,6 +151,8 @@ class Stream:
     def attitude(self) -> npt.NDArray[np.float64]: ...
     @property
     def bias(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def learned_calibration(self) -> Optional[Dict[str, Any]]: ...
     @property
     def bias_variance(self) -> Optional[npt.NDArray[np.float64]]: ...
     @property
