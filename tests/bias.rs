@@ -634,3 +634,26 @@ fn fuzz_findings_on_the_accelerometer_and_the_drift() {
     }
     assert!(e.variance().is_finite(), "{:?}", e.variance());
 }
+
+#[test]
+fn the_motion_bias_refuses_an_acceleration_that_overflows_its_filter() {
+    use quatprop::frontend::MotionBias;
+    let mut m = MotionBias::<f32>::new(0.01).unwrap();
+    for _ in 0..10 {
+        m.update(Vec3::new(0.1, 0.0, 0.0), Vec3::new(0.0, 0.0, 9.81), 0.01)
+            .unwrap();
+    }
+    // Finite, but the low-pass filter's start-up sum of two of them overflows f32: the first is taken,
+    // the second refused.
+    let huge = Vec3::new(3.0e38_f32, 3.0e38, 3.0e38);
+    assert_eq!(m.update(Vec3::ZERO, huge, 0.01), Ok(()));
+    let before = m;
+    assert_eq!(
+        m.update(Vec3::ZERO, huge, 0.01),
+        Err(Error::NonFiniteResult)
+    );
+    assert_eq!(m, before);
+    m.update(Vec3::new(0.1, 0.0, 0.0), Vec3::new(0.0, 0.0, 9.81), 0.01)
+        .unwrap();
+    assert!(m.bias().is_finite());
+}

@@ -20,7 +20,7 @@
 
 use super::inclination::{clip, inverse, Inclination, LowPass};
 use super::Calibration;
-use crate::{Error, GyroSample, Real, Vec3};
+use crate::{Error, GyroSample, Quat, Real, Vec3};
 
 /// The bias state's unit (rad/s): 0.01 °/s, as VQF keeps it (the filter's numbers near 1 in f32).
 const BIAS_UNIT: f64 = 0.01 * core::f64::consts::PI / 180.0;
@@ -87,6 +87,8 @@ pub struct CalibrationEstimator<T> {
     p_rest: T,
     /// The gain's prior standard deviations (units of 10⁻³): diagonal, off-diagonal.
     sigma0: [T; 2],
+    /// The gain's growth per sample (units of 10⁻³, squared).
+    gain_walk: T,
     /// The measurement variances (horizontal, vertical).
     w_motion: T,
     w_vertical: T,
@@ -100,7 +102,13 @@ impl<T: Real> CalibrationEstimator<T> {
     /// inclination drift that the low-passed accelerometer shows and the gyro did not cause (linear
     /// acceleration left after the low-pass). 0.1 °/√s times √3: the factor leave-one-trial-out
     /// cross-validation chose on BROAD (`python/benchmarks/calibration.py`, docs/calibration.md).
-    pub const DEFAULT_MOTION_NOISE: f64 = 0.1 * 1.732_050_807_568_877_2 * core::f64::consts::PI / 180.0;
+    pub const DEFAULT_MOTION_NOISE: f64 =
+        0.1 * 1.732_050_807_568_877_2 * core::f64::consts::PI / 180.0;
+
+    /// How fast the gain may change (1/√s, a random walk's density): a gain term's variance grows by
+    /// `GAIN_WALK²` per second. A gyro's gain is a constant; this lets the filter forget what it learned
+    /// while its estimate was far from the truth (where the linearization is poor).
+    pub const GAIN_WALK: f64 = 1.0e-5;
 
     /// The largest gain term it learns (beyond, the estimate is clipped): 5 % of the rate.
     pub const GAIN_LIMIT: f64 = 0.05;
@@ -166,7 +174,10 @@ impl<T: Real> CalibrationEstimator<T> {
         if !(w_motion.is_finite() && T::from_f64(w_motion).is_finite()) {
             return Err(Error::InvalidEstimator);
         }
-        let sigma0 = [sensitivity_sigma / GAIN_UNIT, misalignment_sigma / GAIN_UNIT];
+        let sigma0 = [
+            sensitivity_sigma / GAIN_UNIT,
+            misalignment_sigma / GAIN_UNIT,
+        ];
         let mut p = [[T::ZERO; N]; N];
         for (i, row) in p.iter_mut().enumerate() {
             row[i] = if i < 3 {
@@ -188,6 +199,7 @@ impl<T: Real> CalibrationEstimator<T> {
             v: t(v),
             p_rest: t(3.0 * 3.0),
             sigma0: [t(sigma0[0]), t(sigma0[1])],
+            gain_walk: t((Self::GAIN_WALK / GAIN_UNIT) * (Self::GAIN_WALK / GAIN_UNIT) * ts),
             w_motion: t(w_motion),
             w_vertical: t(w_motion / 1.0e-4),
             clip_e: t(200.0),
@@ -308,7 +320,9 @@ impl<T: Real> CalibrationEstimator<T> {
         self.step(rate, accel, dt);
         let finite = self.theta.iter().all(|x| x.is_finite())
             && self.p.iter().flatten().all(|x| x.is_finite())
-            && self.inclination.is_finite();
+            && self.inclination.is_finite()
+            && self.h_lp.iter().all(LowPass::is_finite)
+            && self.prediction_lp.is_finite();
         if !finite {
             *self = before;
             return Err(Error::NonFiniteResult);
@@ -327,11 +341,16 @@ impl<T: Real> CalibrationEstimator<T> {
         let b = self.bias();
         let c = T::from_f64(GAIN_UNIT / BIAS_UNIT);
         let d = [(rate.x - b.x) * c, (rate.y - b.y) * c, (rate.z - b.z) * c];
-        let r = o.rotation;
+        let r = tilt_to(o.rotation, accel);
+        // The vertical row keeps only the bias: it is VQF's pseudo-measurement that holds the vertical
+        // bias near zero while nothing shows it, not an observation (the gain's vertical drift is real).
         let mut h = [[T::ZERO; N]; 3];
-        for (hr, rr) in h.iter_mut().zip(r.iter()) {
+        for (row, (hr, rr)) in h.iter_mut().zip(r.iter()).enumerate() {
             for k in 0..3 {
                 hr[k] = rr[0] * m[0][k] + rr[1] * m[1][k] + rr[2] * m[2][k];
+            }
+            if row == 2 {
+                continue;
             }
             for i in 0..3 {
                 for (j, dj) in d.iter().enumerate() {
@@ -339,7 +358,8 @@ impl<T: Real> CalibrationEstimator<T> {
                 }
             }
         }
-        let dot = |row: &[T; N], x: &[T; N]| row.iter().zip(x).fold(T::ZERO, |s, (a, b)| s + *a * *b);
+        let dot =
+            |row: &[T; N], x: &[T; N]| row.iter().zip(x).fold(T::ZERO, |s, (a, b)| s + *a * *b);
         let prediction = [dot(&h[0], &self.theta), dot(&h[1], &self.theta)];
         let f = &self.inclination.filter;
         let hl: [[T; N]; 3] = [
@@ -361,11 +381,15 @@ impl<T: Real> CalibrationEstimator<T> {
             -dot(&hl[2], &self.theta),
         ]
         .map(|x| clip(x, self.clip_e));
-        // The bias forgets (VQF's growth up to its prior); the gain is a constant.
+        // The bias forgets (VQF's growth up to its prior); the gain walks slowly (what lets an early
+        // estimate, linearized far from the truth, be forgotten).
         for i in 0..3 {
             if self.p[i][i] < self.p0 {
                 self.p[i][i] += self.v;
             }
+        }
+        for i in 3..N {
+            self.p[i][i] += self.gain_walk;
         }
         // K = P Hᵀ (H P Hᵀ + W)⁻¹; θ += K e; P −= K (H P).
         let mut ph = [[T::ZERO; 3]; N];
@@ -398,8 +422,8 @@ impl<T: Real> CalibrationEstimator<T> {
         // P −= K (P Hᵀ)ᵀ, kept symmetric by computing one triangle.
         for i in 0..N {
             for j in i..N {
-                let x = self.p[i][j]
-                    - (k[i][0] * ph[j][0] + k[i][1] * ph[j][1] + k[i][2] * ph[j][2]);
+                let x =
+                    self.p[i][j] - (k[i][0] * ph[j][0] + k[i][1] * ph[j][1] + k[i][2] * ph[j][2]);
                 self.p[i][j] = x;
                 self.p[j][i] = x;
             }
@@ -415,4 +439,28 @@ impl<T: Real> CalibrationEstimator<T> {
     fn refresh(&mut self) {
         self.calibration = Calibration::from_gain(self.bias(), self.gain());
     }
+}
+
+/// `r` (body to the vertical frame, rows) turned by the smallest rotation that brings this sample's
+/// accelerometer `a` (body axes) onto the vertical: the attitude where the accelerometer says it is now,
+/// without the low-pass filter's lag. The Jacobian is taken there, so that a tilt the shadow attitude has
+/// only because the filter lags does not make a turn about the true vertical look tilting (which would
+/// teach the filter a vertical axis's scale it cannot see). `r` itself where `a` is zero or points down.
+fn tilt_to<T: Real>(r: [[T; 3]; 3], a: Vec3<T>) -> [[T; 3]; 3] {
+    let Some(a) = a.normalized() else {
+        return r;
+    };
+    let v = Vec3::new(
+        r[0][0] * a.x + r[0][1] * a.y + r[0][2] * a.z,
+        r[1][0] * a.x + r[1][1] * a.y + r[1][2] * a.z,
+        r[2][0] * a.x + r[2][1] * a.y + r[2][2] * a.z,
+    );
+    let qw = ((v.z + T::ONE) * T::HALF).max(T::ZERO).sqrt();
+    if !(qw > T::from_f64(1e-3)) {
+        return r;
+    }
+    let c = Quat::new(qw, T::HALF * v.y / qw, -T::HALF * v.x / qw, T::ZERO).to_rotation_matrix();
+    core::array::from_fn(|i| {
+        core::array::from_fn(|j| c[i][0] * r[0][j] + c[i][1] * r[1][j] + c[i][2] * r[2][j])
+    })
 }

@@ -75,6 +75,11 @@ impl<T: Real, const N: usize> LowPass<T, N> {
         }
     }
 
+    /// Whether every number in the filter's state is finite.
+    pub(super) fn is_finite(&self) -> bool {
+        self.s0.iter().chain(self.s1.iter()).all(|x| x.is_finite())
+    }
+
     /// Whether the start (the mean of the first `τ`) is over and the output is the filter's.
     pub(super) fn is_filtering(&self) -> bool {
         self.count.is_none()
@@ -164,9 +169,10 @@ impl<T: Real> Inclination<T> {
         }
     }
 
-    /// Whether the attitudes are finite (a check after an update).
+    /// Whether the attitudes and the filter's state are finite (a check after an update: an
+    /// acceleration near the float's largest can overflow the filter's sum).
     pub(super) fn is_finite(&self) -> bool {
-        self.gyr_quat.is_finite() && self.acc_quat.is_finite()
+        self.gyr_quat.is_finite() && self.acc_quat.is_finite() && self.acc_lp.is_finite()
     }
 
     /// The corrected rate `w` (rad/s) over `dt` (s) into the shadow attitude, then the accelerometer

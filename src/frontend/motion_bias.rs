@@ -135,7 +135,11 @@ impl<T: Real> MotionBias<T> {
         }
         let before = *self;
         self.step(rate, accel, dt);
-        if !(self.bias.is_finite() && self.inclination.is_finite()) {
+        if !(self.bias.is_finite()
+            && self.inclination.is_finite()
+            && self.r_lp.is_finite()
+            && self.bias_lp.is_finite())
+        {
             *self = before;
             return Err(Error::NonFiniteResult);
         }
@@ -222,4 +226,3 @@ fn transpose<T: Real>(a: M3<T>) -> M3<T> {
         [a[0][2], a[1][2], a[2][2]],
     ]
 }
-
