@@ -348,14 +348,16 @@ def test_counts_through_the_count_scale_are_the_scaled_rates_and_rails_are_count
 
 
 @pytest.mark.parametrize("size", [1, 7, 400])
-def test_the_motion_bias_state_is_kept_between_calls(size):
-    """The residual bias learned in motion (BiasEstimator(motion=True), the accelerometer in the gyro's
-    axes): chunks give the bits of one call, alignment and a refused sample included."""
-    gyr = coning()
-    gyr[[300, 1500]] = np.nan
-    acc = companions()["acc"]
+@pytest.mark.parametrize("motion", [True, quatprop.CalibrationEstimator(0.01, 0.0087)], ids=["bias", "gain"])
+def test_the_motion_bias_state_is_kept_between_calls(size, motion):
+    """What is learned in motion (BiasEstimator(motion=True): the residual bias; motion=
+    CalibrationEstimator: the gain too; the accelerometer in the gyro's axes): chunks give the bits of one
+    call, alignment and a refused sample included; 6 s, so that the gain's filter is past its 3 s start."""
+    gyr = coning(6000)
+    gyr[[300, 4500]] = np.nan
+    acc = companions(6000)["acc"]
     options = dict(precision="f32", alignment="PyNxPz", on_refused="mask",
-                   bias=quatprop.BiasEstimator(window=0.1, gate=0.05, motion=True))
+                   bias=quatprop.BiasEstimator(window=0.1, gate=0.05, motion=motion))
     whole, _ = quatprop.integrate(gyr, dt=1e-3, acc=acc, **options)
     q, _ = chunked(quatprop.Stream(dt=1e-3, **options), gyr, size, acc=acc)
     assert q.tobytes() == whole.tobytes()

@@ -15,6 +15,7 @@ __all__ = [
     "calibrate",
     "RefusedSample",
     "BiasEstimator",
+    "CalibrationEstimator",
     "CountScale",
     "allan",
     "to_euler_zyx",
