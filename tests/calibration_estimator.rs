@@ -5,22 +5,12 @@
 use quatprop::frontend::{Calibration, CalibrationEstimator};
 use quatprop::{Error, GyroSample, Quat, Real, Vec3};
 
-/// White noise by a small generator (sum of uniforms), deterministic.
-struct Noise(u64);
-impl Noise {
-    fn next(&mut self) -> f64 {
-        let mut acc = 0.0;
-        for _ in 0..12 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            acc += (self.0 >> 11) as f64 / (1u64 << 53) as f64;
-        }
-        acc - 6.0 // unit variance
-    }
-    fn vec(&mut self, sigma: f64) -> Vec3<f64> {
-        Vec3::new(self.next(), self.next(), self.next()) * sigma
-    }
+mod support;
+use support::Xorshift;
+
+/// Gaussian white noise of standard deviation `sigma` on each axis.
+fn noise(g: &mut Xorshift, sigma: f64) -> Vec3<f64> {
+    Vec3::new(g.gaussian(), g.gaussian(), g.gaussian()) * sigma
 }
 
 /// The true gain correction `I − G` of the test sensor: scale errors of +0.8 %, −0.6 %, +1.0 % and
@@ -61,7 +51,7 @@ fn tumble(
     mut update: impl FnMut(Vec3<f64>, Vec3<f64>),
 ) {
     let to_reading = inverse(&TRUTH);
-    let mut noise = Noise(11);
+    let mut g = Xorshift::with_seed(11);
     let mut q = Quat::<f64>::IDENTITY;
     let n = (seconds / dt).round() as usize;
     for k in 0..n {
@@ -75,8 +65,8 @@ fn tumble(
             .normalized()
             .unwrap();
         let gravity = q.conjugate().rotate(Vec3::new(0.0, 0.0, 9.81));
-        let reading = mat_vec(&to_reading, w) + noise.vec(gyro_noise);
-        update(reading, gravity + noise.vec(accel_noise));
+        let reading = mat_vec(&to_reading, w) + noise(&mut g, gyro_noise);
+        update(reading, gravity + noise(&mut g, accel_noise));
     }
 }
 
@@ -144,7 +134,9 @@ fn a_turn_about_the_vertical_shows_only_the_terms_it_can() {
     // Turning about the vertical body z only: a reading of ω_z shows as G·(0, 0, ω_z) = ω_z·(G_xz, G_yz,
     // G_zz). The first two tilt the attitude (learned); G_zz turns it about the vertical, which the
     // accelerometer cannot see: it stays exactly at its prior. The x and y columns see only the small
-    // readings the misalignment puts on those axes (0.4 % and 0.3 % of the rate): barely learned.
+    // readings the misalignment puts on those axes (0.4 % and 0.3 % of the rate), always in proportion to
+    // the z reading: the filter cannot tell them from the z column's terms, and learns only what this
+    // motion shows, a correction that takes the reading to a turn about z alone.
     let dt = 0.01;
     let mut est =
         CalibrationEstimator::<f64>::with_motion_noise(dt, 0.01, 0.0087, 0.01_f64.to_radians())
@@ -170,11 +162,11 @@ fn a_turn_about_the_vertical_shows_only_the_terms_it_can() {
     assert!((g[2][2] - 1.0).abs() < 1.0e-12, "{}", g[2][2]);
     for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)] {
         assert!(seen[i][j] < 0.1, "({i}, {j}) {}", seen[i][j]);
-        assert!(
-            (g[i][j] - if i == j { 1.0 } else { 0.0 }).abs() < 1.0e-3,
-            "({i}, {j}) {}",
-            g[i][j]
-        );
+    }
+    let reading = [0.004, -0.003, 1.01];
+    for row in &g[..2] {
+        let corrected: f64 = row.iter().zip(reading).map(|(m, r)| m * r).sum();
+        assert!(corrected.abs() < 2.0e-4, "{corrected}");
     }
 }
 

@@ -18,7 +18,7 @@
 //! swing); many turns at different attitudes show every term. What it has not seen stays at its prior,
 //! and its standard deviation ([`CalibrationEstimator::gain_std_dev`]) says so.
 
-use super::inclination::{clip, inverse, Inclination, LowPass};
+use super::inclination::{check_input, clip, inverse, Inclination, LowPass};
 use super::Calibration;
 use crate::{Error, GyroSample, Quat, Real, Vec3};
 
@@ -304,18 +304,7 @@ impl<T: Real> CalibrationEstimator<T> {
     /// [`Error::NonPositiveStep`] for bad input, [`Error::NonFiniteResult`] if the arithmetic overflows;
     /// the estimator is then unchanged.
     pub fn update(&mut self, rate: Vec3<T>, accel: Vec3<T>, dt: T) -> Result<(), Error> {
-        if !rate.is_finite() {
-            return Err(Error::NonFiniteRate);
-        }
-        if !accel.is_finite() {
-            return Err(Error::NonFiniteAux);
-        }
-        if !dt.is_finite() {
-            return Err(Error::NonFiniteStep);
-        }
-        if !(dt > T::ZERO) {
-            return Err(Error::NonPositiveStep);
-        }
+        check_input(rate, accel, dt)?;
         let before = *self;
         self.step(rate, accel, dt);
         let finite = self.theta.iter().all(|x| x.is_finite())

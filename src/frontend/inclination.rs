@@ -6,7 +6,7 @@
 //! rejection", Information Fusion 91, 2023). The rate of that correction is what a wrong rate (a bias, a
 //! wrong gain) does to the inclination, low-passed; each estimator models it with its own states.
 
-use crate::{Quat, Real, Vec3};
+use crate::{Error, Quat, Real, Vec3};
 
 /// A second-order Butterworth low-pass filter's coefficients `b0, b1, b2, a1, a2` and the samples to
 /// average first.
@@ -225,4 +225,22 @@ pub(super) fn inverse<T: Real>(a: [[T; 3]; 3]) -> Option<[[T; 3]; 3]> {
         }
     }
     Some(out)
+}
+
+/// The refusals of an in-motion estimator's update: a rate, an acceleration or a `dt` that is not finite,
+/// a `dt` that is not positive.
+pub(super) fn check_input<T: Real>(rate: Vec3<T>, accel: Vec3<T>, dt: T) -> Result<(), Error> {
+    if !rate.is_finite() {
+        return Err(Error::NonFiniteRate);
+    }
+    if !accel.is_finite() {
+        return Err(Error::NonFiniteAux);
+    }
+    if !dt.is_finite() {
+        return Err(Error::NonFiniteStep);
+    }
+    if !(dt > T::ZERO) {
+        return Err(Error::NonPositiveStep);
+    }
+    Ok(())
 }

@@ -10,7 +10,7 @@
 //! turns, every component of the bias becomes observable. The shadow attitude (gyro and accelerometer) is
 //! internal: the accelerometer informs the bias, never the attitude the propagator integrates.
 
-use super::inclination::{clip, inverse, Inclination, LowPass};
+use super::inclination::{check_input, clip, inverse, Inclination, LowPass};
 use crate::{Error, Real, Vec3};
 
 /// The residual gyro bias in motion, learned from the accelerometer (VQF's motion bias estimation).
@@ -121,18 +121,7 @@ impl<T: Real> MotionBias<T> {
     /// [`Error::NonFiniteRate`], [`Error::NonFiniteAux`], [`Error::NonFiniteStep`] /
     /// [`Error::NonPositiveStep`] for bad input; the estimator is then unchanged.
     pub fn update(&mut self, rate: Vec3<T>, accel: Vec3<T>, dt: T) -> Result<(), Error> {
-        if !rate.is_finite() {
-            return Err(Error::NonFiniteRate);
-        }
-        if !accel.is_finite() {
-            return Err(Error::NonFiniteAux);
-        }
-        if !dt.is_finite() {
-            return Err(Error::NonFiniteStep);
-        }
-        if !(dt > T::ZERO) {
-            return Err(Error::NonPositiveStep);
-        }
+        check_input(rate, accel, dt)?;
         let before = *self;
         self.step(rate, accel, dt);
         if !(self.bias.is_finite()
