@@ -409,10 +409,9 @@ impl<T: Real> CalibrationEstimator<T> {
             *th += kr[0] * e[0] + kr[1] * e[1] + kr[2] * e[2];
         }
         // P −= K (P Hᵀ)ᵀ, kept symmetric by computing one triangle.
-        for i in 0..N {
-            for j in i..N {
-                let x =
-                    self.p[i][j] - (k[i][0] * ph[j][0] + k[i][1] * ph[j][1] + k[i][2] * ph[j][2]);
+        for (i, ki) in k.iter().enumerate() {
+            for (j, phj) in ph.iter().enumerate().skip(i) {
+                let x = self.p[i][j] - (ki[0] * phj[0] + ki[1] * phj[1] + ki[2] * phj[2]);
                 self.p[i][j] = x;
                 self.p[j][i] = x;
             }
