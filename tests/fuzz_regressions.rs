@@ -323,3 +323,61 @@ fn a_step_at_the_sine_limit_is_refused_for_what_failed() {
         other => panic!("{other:?}"),
     }
 }
+
+/// Found by `calibration` (f64: a period of 2.5e-305 s, a noise of 3.0e-3 rad/√s; in f32 a period of
+/// 0.01 s and a noise of 1e13 rad/√s do the same): `CalibrationEstimator::with_motion_noise` checked that
+/// the horizontal measurement variance `(noise / 0.01 °/s)² / period` fits in `T`, but not the vertical
+/// one, 10⁴ times larger: it was infinite, so was every innovation variance's determinant, and the filter
+/// never updated. Such figures are now refused as `InvalidEstimator`.
+#[test]
+fn a_calibration_estimator_it_accepts_has_a_finite_vertical_variance() {
+    use quatprop::frontend::CalibrationEstimator;
+    use quatprop::Error;
+    let f64_case = CalibrationEstimator::<f64>::with_motion_noise(
+        2.456433067008941e-305,
+        0.0,
+        0.0,
+        3.0229989403903626e-3,
+    );
+    let f32_case = CalibrationEstimator::<f32>::with_motion_noise(0.01, 0.01, 0.0087, 1.0e13);
+    let texts = [
+        f64_case.map(|e| format!("{e:?}")),
+        f32_case.map(|e| format!("{e:?}")),
+    ];
+    for text in texts {
+        match text {
+            Err(e) => assert_eq!(e, Error::InvalidEstimator),
+            Ok(t) => assert!(!(t.contains("inf") || t.contains("NaN")), "{t}"),
+        }
+    }
+}
+
+/// Found by `calibration` (f64, a period of f64::MAX): `CalibrationEstimator::new` and `MotionBias::new`
+/// accepted any finite positive period but computed the bias variance's growth per sample as
+/// `10·10·period/100`, which overflows beyond 1.8e306 s: an infinite growth kept in the state, and in
+/// `MotionBias`, after its first reading, an infinite covariance that stopped it learning. Such periods
+/// are now refused as `InvalidEstimator`; whatever is accepted holds finite numbers.
+#[test]
+fn a_huge_period_gives_a_finite_bias_growth() {
+    use quatprop::frontend::{CalibrationEstimator, MotionBias};
+    use quatprop::{Quat, Vec3};
+    let period = 1.0e307;
+    let finite = |text: String| assert!(!(text.contains("inf") || text.contains("NaN")), "{text}");
+    if let Ok(e) = CalibrationEstimator::<f64>::new(period, 0.01, 0.0087) {
+        finite(format!("{e:?}"));
+    }
+    if let Ok(mut m) = MotionBias::<f64>::new(period) {
+        // A body turning at 1 rad/s about x with a bias of 0.5 °/s: its readings every 10 ms.
+        let mut q = Quat::<f64>::IDENTITY;
+        for _ in 0..10 {
+            let w = Vec3::new(1.0, 0.0, 0.0);
+            q = (q * Quat::from_rotation_vector(w * 0.01))
+                .normalized()
+                .unwrap();
+            let g = q.conjugate().rotate(Vec3::new(0.0, 0.0, 9.81));
+            m.update(w + Vec3::new(0.5_f64.to_radians(), 0.0, 0.0), g, 0.01)
+                .unwrap();
+        }
+        finite(format!("{m:?}"));
+    }
+}

@@ -6,13 +6,16 @@
  * (QUATPROP_NOT_INITIALIZED when the tag's 4 bytes changed, QUATPROP_CORRUPTED_STATE otherwise), leave the
  * bytes as they were, and never crash (the sanitizers and the signal handlers would end the run). Every pair
  * of bits of two states, and random multi-byte damage, are tried against the check itself by
- * ffi/src/tests/check.rs. */
+ * ffi/src/tests/check.rs. The calibration estimator's block is changed the same ways, fresh, while its
+ * low-pass filters average and while it learns, and handed to every one of its functions but init
+ * (ffi/src/tests/calibration.rs tries its check itself). */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "quatprop.h"
+#include "tumble.h"
 
 static void crashed(int sig) {
     printf("FAIL flip: signal %d\n", sig);
@@ -25,13 +28,45 @@ static unsigned long calls, refused, wrong, changed;
 /* Where the tag is (ffi/src/lib.rs's TAG): a state whose tag changed is not a state (NOT_INITIALIZED). */
 #define TAG_AT (QUATPROP_STATE_SIZE - 12u)
 
-static void expect(quatprop_status_t got, const quatprop_t *good, const quatprop_t *flipped, const quatprop_t *after) {
-    int tag_changed = memcmp((const uint8_t *)good + TAG_AT, (const uint8_t *)flipped + TAG_AT, 4) != 0;
+/* A call on the changed block `flipped` (`size` bytes, its tag at `tag_at`) returned `got` and left
+ * `after`. */
+static void expect_block(quatprop_status_t got, const void *good, const void *flipped, const void *after, size_t size,
+                         size_t tag_at) {
+    int tag_changed = memcmp((const uint8_t *)good + tag_at, (const uint8_t *)flipped + tag_at, 4) != 0;
     quatprop_status_t want = tag_changed ? QUATPROP_NOT_INITIALIZED : QUATPROP_CORRUPTED_STATE;
     calls++;
     if (got == want) refused++;
     else if (wrong++ < 10) printf("FAIL got %s, want %s\n", quatprop_status_name((int32_t)got), quatprop_status_name((int32_t)want));
-    if (memcmp(flipped, after, sizeof *after) != 0) changed++;
+    if (memcmp(flipped, after, size) != 0) changed++;
+}
+
+static void expect(quatprop_status_t got, const quatprop_t *good, const quatprop_t *flipped, const quatprop_t *after) {
+    expect_block(got, good, flipped, after, sizeof *after, TAG_AT);
+}
+
+/* The calibration estimator's tag (ffi/src/calibration.rs's TAG). */
+#define EST_TAG_AT (QUATPROP_CALIBRATION_ESTIMATOR_SIZE - 12u)
+typedef quatprop_calibration_estimator_t est_t;
+
+static void expect_est(quatprop_status_t got, const est_t *good, const est_t *flipped, const est_t *after) {
+    expect_block(got, good, flipped, after, sizeof *after, EST_TAG_AT);
+}
+
+/* Hands the changed block `bad` to every function of the estimator but init: none may write an output. */
+static void try_est(const est_t *good, const est_t *bad) {
+    est_t after;
+    memcpy(&after, bad, sizeof after);
+    const float r[3] = {0.1f, 0.2f, 0.3f}, a[3] = {0.0f, 0.0f, 9.81f};
+    float out[9], out2[9], out3[9];
+    for (int i = 0; i < 9; i++) out[i] = out2[i] = out3[i] = 7.0f;
+    expect_est(quatprop_calibration_estimator_update(&after, r, a, 0.01), good, bad, &after);
+    expect_est(quatprop_calibration_estimator_correct(&after, r, out), good, bad, &after);
+    expect_est(quatprop_calibration_estimator_at_rest(&after), good, bad, &after);
+    expect_est(quatprop_calibration_estimator_get_gain(&after, out, out2), good, bad, &after);
+    expect_est(quatprop_calibration_estimator_get_bias(&after, out), good, bad, &after);
+    expect_est(quatprop_calibration_estimator_get_calibration(&after, out, out2, out3), good, bad, &after);
+    for (int i = 0; i < 9; i++)
+        if (out[i] != 7.0f || out2[i] != 7.0f || out3[i] != 7.0f) wrong++;
 }
 
 /* Hands the changed state `bad` to a getter, a single push and a burst. */
@@ -128,5 +163,50 @@ int main(void) {
            " %d random pairs of bits; %d runs of 2 to 32 bytes each changed), %lu calls: %lu refused with the expected"
            " code, %lu not, %lu changed a state, 0 crashes\n",
            configs, states, sizeof(quatprop_t), PAIRS, RUNS, calls, refused, wrong, changed);
+    const unsigned long calls0 = calls, refused0 = refused, wrong0 = wrong, changed0 = changed;
+    /* The calibration estimator's block: fresh, averaging (150 samples of the tumbling body), learning (3000). */
+    static const unsigned est_samples[3] = {0, 150, 3000};
+    unsigned est_states = 0;
+    for (int k = 0; k < 3; k++) {
+        est_t good, bad;
+        tumble_t t;
+        float rate[3], accel[3];
+        int ok = quatprop_calibration_estimator_init(&good, 0.01, 0.01, 0.0087, QUATPROP_DEFAULT_MOTION_NOISE) == QUATPROP_OK;
+        tumble_init(&t);
+        for (unsigned i = 0; i < est_samples[k] && tumble_next(&t, rate, accel); i++)
+            ok = ok && quatprop_calibration_estimator_update(&good, rate, accel, TUMBLE_DT) == QUATPROP_OK;
+        if (!ok) {
+            printf("FAIL calibration estimator after %u samples\n", est_samples[k]);
+            return 1;
+        }
+        for (size_t byte = 0; byte < sizeof good; byte++)
+            for (int f = 0; f < 9; f++) {
+                memcpy(&bad, &good, sizeof bad);
+                ((uint8_t *)&bad)[byte] ^= flips[f];
+                est_states++;
+                try_est(&good, &bad);
+            }
+        for (int p = 0; p < PAIRS; p++) {
+            uint32_t i = rng() % (8 * sizeof good), j = rng() % (8 * sizeof good);
+            if (i == j) continue;
+            memcpy(&bad, &good, sizeof bad);
+            ((uint8_t *)&bad)[i / 8] ^= (uint8_t)(1u << (i % 8));
+            ((uint8_t *)&bad)[j / 8] ^= (uint8_t)(1u << (j % 8));
+            est_states++;
+            try_est(&good, &bad);
+        }
+        for (int p = 0; p < RUNS; p++) {
+            uint32_t len = 2 + rng() % 31, at = rng() % (uint32_t)(sizeof good - len + 1);
+            memcpy(&bad, &good, sizeof bad);
+            for (uint32_t b = at; b < at + len; b++) ((uint8_t *)&bad)[b] ^= (uint8_t)(1u | rng());
+            est_states++;
+            try_est(&good, &bad);
+        }
+    }
+    printf("flip: calibration estimator: 3 blocks (fresh, averaging, learning), %u changed blocks (each of the %zu"
+           " bytes: every bit flipped, and inverted; %d random pairs of bits; %d runs of 2 to 32 bytes each changed),"
+           " %lu calls to its 6 functions but init: %lu refused with the expected code, %lu not (or wrote an output),"
+           " %lu changed a block, 0 crashes\n",
+           est_states, sizeof(est_t), PAIRS, RUNS, calls - calls0, refused - refused0, wrong - wrong0, changed - changed0);
     return wrong != 0 || changed != 0;
 }

@@ -1,11 +1,13 @@
 /* Host test of the C API (gcc): the quick start's attitude bits (compared by ffi/ci with the Rust quick
- * start's, firmware/expected/quickstart.txt) and the error contract: every error has its code, NULL and
- * bad enum values are refused, and the state's bytes are unchanged after every error. */
+ * start's, firmware/expected/quickstart.txt), the calibration estimator's bits on a tumbling body (compared
+ * with the Rust estimator's, ffi/expected/calibration.txt) and the error contract: every error has its
+ * code, NULL and bad enum values are refused, and the state's bytes are unchanged after every error. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include "quickstart.h"
 #include "scene.h"
+#include "tumble.h"
 
 
 static unsigned passed, failed;
@@ -23,6 +25,17 @@ static unsigned passed, failed;
         if (got_ != (code)) printf("  got %s\n", quatprop_status_name((int32_t)got_)); \
         CHECK(got_ == (code));                                               \
         CHECK(memcmp(&before_, (st), sizeof before_) == 0);                  \
+    } while (0)
+
+/* The same for a calibration estimator's block. */
+#define EST_REFUSED(est, call, code)                                         \
+    do {                                                                     \
+        quatprop_calibration_estimator_t before_;                            \
+        memcpy(&before_, (est), sizeof before_);                             \
+        quatprop_status_t got_ = (call);                                     \
+        if (got_ != (code)) printf("  got %s\n", quatprop_status_name((int32_t)got_)); \
+        CHECK(got_ == (code));                                               \
+        CHECK(memcmp(&before_, (est), sizeof before_) == 0);                 \
     } while (0)
 
 static quatprop_config_t config(uint32_t input) {
@@ -308,6 +321,165 @@ static void corrections(void) {
     CHECK(fabsf(turned - 1e-3f) < 3e-7f);
 }
 
+static void print_bits(const char *label, const float *v, int n) {
+    printf(" %s", label);
+    for (int i = 0; i < n; i++) printf(" %08x", (unsigned)scene_bits(v[i]));
+}
+
+/* The calibration estimator on the tumbling body (tumble.c: a gyro 1 % high on x): its learned gain, bias,
+ * calibration and a corrected rate, printed as bits (ffi/ci compares the line with the Rust estimator's,
+ * ffi/expected/calibration.txt), the x scale learned to 2e-4; the calibration handed to a state corrects
+ * as the estimator does, bit for bit. */
+static void calibration_estimator(void) {
+    static quatprop_calibration_estimator_t est; /* QUATPROP_CALIBRATION_ESTIMATOR_SIZE bytes */
+    /* A still accelerometer: a measurement noise of 0.001 deg/sqrt(s) (the Rust doc example's). */
+    const double noise = 0.001 * (3.14159265358979323846 / 180.0);
+    CHECK(quatprop_calibration_estimator_init(&est, 0.01, 0.01, 0.0087, noise) == QUATPROP_OK);
+    tumble_t t;
+    float rate[3], accel[3];
+    unsigned samples = 0, refused = 0;
+    tumble_init(&t);
+    while (tumble_next(&t, rate, accel)) {
+        samples++;
+        if (quatprop_calibration_estimator_update(&est, rate, accel, TUMBLE_DT) != QUATPROP_OK) refused++;
+    }
+    CHECK(samples == TUMBLE_SAMPLES && refused == 0);
+    float gain[9], sd[9], bias[3], offset[3], sens[3], mis[9], corrected[3];
+    const float one[3] = {1.01f, 0.0f, 0.0f};
+    CHECK(quatprop_calibration_estimator_get_gain(&est, gain, sd) == QUATPROP_OK);
+    CHECK(quatprop_calibration_estimator_get_bias(&est, bias) == QUATPROP_OK);
+    CHECK(quatprop_calibration_estimator_get_calibration(&est, offset, sens, mis) == QUATPROP_OK);
+    CHECK(quatprop_calibration_estimator_correct(&est, one, corrected) == QUATPROP_OK);
+    printf("calibration samples=%u", samples);
+    print_bits("gain", gain, 9);
+    print_bits("sd", sd, 9);
+    print_bits("bias", bias, 3);
+    print_bits("offset", offset, 3);
+    print_bits("sensitivity", sens, 3);
+    print_bits("misalignment", mis, 9);
+    print_bits("corrected", corrected, 3);
+    printf("\n");
+    printf("calibration x scale %.7f (1/1.01 = %.7f), its std dev %.2e (prior 0.01)\n", (double)gain[0],
+           1.0 / 1.01, (double)sd[0]);
+    CHECK(fabsf(gain[0] - 1.0f / 1.01f) < 2e-4f && sd[0] < 1e-3f);
+    CHECK(fabsf(corrected[0] - 1.0f) < 5e-4f);
+    for (int i = 0; i < 3; i++) CHECK(offset[i] == bias[i] && sens[i] == gain[4 * i]);
+
+    /* The hand-over: a state with the learned calibration integrates what the estimator corrects. */
+    quatprop_config_t c = config(QUATPROP_INPUT_HOLD);
+    c.scheme = QUATPROP_SCHEME_EULER;
+    quatprop_t with, without;
+    CHECK(quatprop_init(&with, &c) == QUATPROP_OK && quatprop_init(&without, &c) == QUATPROP_OK);
+    CHECK(quatprop_set_calibration(&with, offset, sens, mis) == QUATPROP_OK);
+    const float raw[3] = {0.3f, -0.7f, 1.2f};
+    float w[3];
+    CHECK(quatprop_calibration_estimator_correct(&est, raw, w) == QUATPROP_OK);
+    quatprop_sample_t r = {raw[0], raw[1], raw[2], 0}, k = {w[0], w[1], w[2], 0};
+    quatprop_quat_t qa, qb;
+    for (int i = 0; i < 10; i++) {
+        CHECK(quatprop_push_rate(&with, &r, 1e-2) == QUATPROP_OK);
+        CHECK(quatprop_push_rate(&without, &k, 1e-2) == QUATPROP_OK);
+    }
+    CHECK(quatprop_get_attitude(&with, &qa) == QUATPROP_OK && quatprop_get_attitude(&without, &qb) == QUATPROP_OK);
+    CHECK(memcmp(&qa, &qb, sizeof qa) == 0 && qa.w != 1.0f);
+    /* rate_out may be rate_in. */
+    float same[3] = {raw[0], raw[1], raw[2]};
+    CHECK(quatprop_calibration_estimator_correct(&est, same, same) == QUATPROP_OK && memcmp(same, w, sizeof w) == 0);
+
+    /* A copy goes on exactly as the original. */
+    static quatprop_calibration_estimator_t copy;
+    memcpy(&copy, &est, sizeof copy);
+    tumble_init(&t);
+    for (int i = 0; i < 20 && tumble_next(&t, rate, accel); i++) {
+        CHECK(quatprop_calibration_estimator_update(&est, rate, accel, TUMBLE_DT) == QUATPROP_OK);
+        CHECK(quatprop_calibration_estimator_update(&copy, rate, accel, TUMBLE_DT) == QUATPROP_OK);
+    }
+    CHECK(memcmp(&copy, &est, sizeof est) == 0);
+
+    /* At rest: the residual bias restarts at zero, the gain stays. */
+    CHECK(quatprop_calibration_estimator_get_gain(&est, gain, sd) == QUATPROP_OK);
+    float after[9];
+    CHECK(quatprop_calibration_estimator_at_rest(&est) == QUATPROP_OK);
+    CHECK(quatprop_calibration_estimator_get_gain(&est, after, sd) == QUATPROP_OK && memcmp(after, gain, sizeof gain) == 0);
+    CHECK(quatprop_calibration_estimator_get_bias(&est, bias) == QUATPROP_OK);
+    CHECK(bias[0] == 0.0f && bias[1] == 0.0f && bias[2] == 0.0f);
+
+    /* The default noise is accepted. */
+    static quatprop_calibration_estimator_t d;
+    CHECK(quatprop_calibration_estimator_init(&d, 0.01, 0.01, 0.0087, QUATPROP_DEFAULT_MOTION_NOISE) == QUATPROP_OK);
+    printf("calibration estimator %u bytes, align %u\n", (unsigned)sizeof est, (unsigned)_Alignof(quatprop_calibration_estimator_t));
+    CHECK(sizeof est == QUATPROP_CALIBRATION_ESTIMATOR_SIZE
+          && _Alignof(quatprop_calibration_estimator_t) == QUATPROP_CALIBRATION_ESTIMATOR_ALIGN);
+}
+
+/* The calibration estimator's refusals: each has its code and leaves the block's bytes as they were. */
+static void calibration_estimator_refusals(void) {
+    static quatprop_calibration_estimator_t zeroed; /* .bss: never initialized */
+    quatprop_calibration_estimator_t e;
+    const float ok[3] = {0.1f, 0.2f, 0.3f}, g[3] = {0.0f, 0.0f, 9.81f};
+    const float nan3[3] = {0.0f, NAN, 0.0f}, inf3[3] = {INFINITY, 0.0f, 0.0f};
+    float out[9] = {7, 7, 7, 7, 7, 7, 7, 7, 7}, out2[9], out3[9];
+    EST_REFUSED(&zeroed, quatprop_calibration_estimator_update(&zeroed, ok, g, 0.01), QUATPROP_NOT_INITIALIZED);
+    EST_REFUSED(&zeroed, quatprop_calibration_estimator_correct(&zeroed, ok, out), QUATPROP_NOT_INITIALIZED);
+    EST_REFUSED(&zeroed, quatprop_calibration_estimator_at_rest(&zeroed), QUATPROP_NOT_INITIALIZED);
+    EST_REFUSED(&zeroed, quatprop_calibration_estimator_get_gain(&zeroed, out, out2), QUATPROP_NOT_INITIALIZED);
+    EST_REFUSED(&zeroed, quatprop_calibration_estimator_get_bias(&zeroed, out), QUATPROP_NOT_INITIALIZED);
+    EST_REFUSED(&zeroed, quatprop_calibration_estimator_get_calibration(&zeroed, out, out2, out3), QUATPROP_NOT_INITIALIZED);
+    CHECK(out[0] == 7.0f && out[8] == 7.0f);
+
+    CHECK(quatprop_calibration_estimator_init(NULL, 0.01, 0.01, 0.0087, QUATPROP_DEFAULT_MOTION_NOISE) == QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, QUATPROP_DEFAULT_MOTION_NOISE) == QUATPROP_OK);
+    tumble_t t;
+    float rate[3], accel[3];
+    tumble_init(&t);
+    for (int i = 0; i < 400 && tumble_next(&t, rate, accel); i++)
+        CHECK(quatprop_calibration_estimator_update(&e, rate, accel, TUMBLE_DT) == QUATPROP_OK);
+    /* A bad configuration leaves the block as it was. */
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.0, 0.01, 0.0087, 1e-3), QUATPROP_NON_POSITIVE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, -0.01, 0.01, 0.0087, 1e-3), QUATPROP_NON_POSITIVE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, NAN, 0.01, 0.0087, 1e-3), QUATPROP_NON_FINITE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, -0.01, 0.0087, 1e-3), QUATPROP_INVALID_ESTIMATOR);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.06, 1e-3), QUATPROP_INVALID_ESTIMATOR);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, NAN, 0.0087, 1e-3), QUATPROP_INVALID_ESTIMATOR);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, 0.0), QUATPROP_INVALID_ESTIMATOR);
+    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, INFINITY), QUATPROP_INVALID_ESTIMATOR);
+    /* Bad samples: the core's errors; nothing changes. */
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, nan3, g, 0.01), QUATPROP_NON_FINITE_RATE);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, inf3, g, 0.01), QUATPROP_NON_FINITE_RATE);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, nan3, 0.01), QUATPROP_NON_FINITE_AUX);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, inf3, 0.01), QUATPROP_NON_FINITE_AUX);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, 0.0), QUATPROP_NON_POSITIVE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, -0.01), QUATPROP_NON_POSITIVE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, NAN), QUATPROP_NON_FINITE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, INFINITY), QUATPROP_NON_FINITE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, 1e300), QUATPROP_NON_FINITE_STEP);
+    EST_REFUSED(&e, quatprop_calibration_estimator_correct(&e, nan3, out), QUATPROP_NON_FINITE_RATE);
+    CHECK(out[0] == 7.0f);
+    /* NULL and misaligned pointers. */
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, NULL, g, 0.01), QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, NULL, 0.01), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_update(NULL, ok, g, 0.01) == QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_correct(&e, ok, NULL), QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_correct(&e, NULL, out), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_correct(NULL, ok, out) == QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_at_rest(NULL) == QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_get_gain(&e, out, NULL), QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_get_gain(&e, NULL, out2), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_get_gain(NULL, out, out2) == QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_get_bias(&e, NULL), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_get_bias(NULL, out) == QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_get_calibration(&e, out, out2, NULL), QUATPROP_NULL_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_get_calibration(&e, NULL, out2, out3), QUATPROP_NULL_POINTER);
+    CHECK(quatprop_calibration_estimator_get_calibration(NULL, out, out2, out3) == QUATPROP_NULL_POINTER);
+    CHECK(out[0] == 7.0f);
+    _Alignas(8) unsigned char raw[16] = {0};
+    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, (const float *)(raw + 2), g, 0.01), QUATPROP_MISALIGNED_POINTER);
+    EST_REFUSED(&e, quatprop_calibration_estimator_get_bias(&e, (float *)(raw + 1)), QUATPROP_MISALIGNED_POINTER);
+    CHECK(quatprop_calibration_estimator_get_bias((const quatprop_calibration_estimator_t *)(raw + 4), out) == QUATPROP_MISALIGNED_POINTER);
+    CHECK(strcmp(quatprop_status_name(QUATPROP_NON_FINITE_AUX), "QUATPROP_NON_FINITE_AUX") == 0);
+    CHECK(strcmp(quatprop_status_name(QUATPROP_INVALID_CALIBRATION), "QUATPROP_INVALID_CALIBRATION") == 0);
+}
+
 int main(void) {
     quick_start();
     not_initialized_and_null();
@@ -316,6 +488,8 @@ int main(void) {
     delta_angles_and_kahan();
     calibration();
     corrections();
+    calibration_estimator();
+    calibration_estimator_refusals();
     printf("state %u bytes, align %u\n", (unsigned)sizeof(quatprop_t), (unsigned)_Alignof(quatprop_t));
     CHECK(sizeof(quatprop_t) == QUATPROP_STATE_SIZE && _Alignof(quatprop_t) == QUATPROP_STATE_ALIGN);
     printf("c-api: %u passed, %u failed\n", passed, failed);

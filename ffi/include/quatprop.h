@@ -22,6 +22,8 @@
  * 4: the state is 1024 bytes (the bias estimator keeps its window's blocks and a Kalman filter's
  * variance; `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift),
  * and its check is a CRC-32C over the whole block, in its last 4 bytes (tag "QPF4").
+ * Added within version 4, changing no layout or value it had: the calibration estimator's own block
+ * (`quatprop_calibration_estimator_t`, tag "QCE1") and its functions, and the status value 17.
  */
 #define QUATPROP_ABI_VERSION 4
 
@@ -235,7 +237,30 @@
 #define QUATPROP_DEFAULT_DRIFT 2.0e-5
 
 /**
- * Result of every call. Values are fixed (ABI); 1 to 16 mirror `quatprop::Error`.
+ * `uint64_t` words in `quatprop_calibration_estimator_t`.
+ */
+#define QUATPROP_CALIBRATION_ESTIMATOR_WORDS 192
+
+/**
+ * Size of `quatprop_calibration_estimator_t` in bytes (same on every target): the estimator's encoding
+ * (1120 bytes, 1143 at most: `tests/calibration.rs` measures both) and the 12 bytes of tag, length and
+ * CRC, with about a quarter of the block to spare for a later version of the estimator.
+ */
+#define QUATPROP_CALIBRATION_ESTIMATOR_SIZE 1536
+
+/**
+ * Alignment of `quatprop_calibration_estimator_t` in bytes.
+ */
+#define QUATPROP_CALIBRATION_ESTIMATOR_ALIGN 8
+
+/**
+ * The default `motion_noise` of `quatprop_calibration_estimator_init` (rad/√s): the Rust
+ * `CalibrationEstimator::DEFAULT_MOTION_NOISE` (0.1 °/√s × √3), the same `double`.
+ */
+#define QUATPROP_DEFAULT_MOTION_NOISE 0.0030229989403903626
+
+/**
+ * Result of every call. Values are fixed (ABI); 1 to 17 mirror `quatprop::Error`.
  */
 typedef enum {
   /**
@@ -243,7 +268,7 @@ typedef enum {
    */
   QUATPROP_OK = 0,
   /**
-   * A rate or angle sample (or a bias) is NaN or infinite.
+   * A rate or angle sample (or a bias, or a rate to correct) is NaN or infinite.
    */
   QUATPROP_NON_FINITE_RATE = 1,
   /**
@@ -292,7 +317,9 @@ typedef enum {
   QUATPROP_INVALID_CLOCK = 12,
   /**
    * Bias estimator: the window must hold 1 to 2^31 − 1 samples, the period be finite and positive, the
-   * gate finite and positive, the drift finite and not negative.
+   * gate finite and positive, the drift finite and not negative. Calibration estimator: each sigma 0 to
+   * 0.05, the motion noise finite and positive, and with the period, variances that fit a `float`
+   * (a noise or a period absurdly large).
    */
   QUATPROP_INVALID_ESTIMATOR = 13,
   /**
@@ -308,6 +335,11 @@ typedef enum {
    * a condition number (∞-norm) above 100.
    */
   QUATPROP_INVALID_CALIBRATION = 16,
+  /**
+   * An accelerometer reading given beside a rate (`quatprop_calibration_estimator_update`) is NaN or
+   * infinite.
+   */
+  QUATPROP_NON_FINITE_AUX = 17,
   /**
    * A pointer argument is NULL.
    */
@@ -495,6 +527,18 @@ typedef struct {
    */
   uint32_t bias_learned;
 } quatprop_counters_t;
+
+/**
+ * The calibration estimator's opaque state. Allocate it anywhere (no heap needed), set it up with
+ * `quatprop_calibration_estimator_init`; never read or write `_opaque` (a copy of a whole initialized
+ * block is fine). 8-byte aligned.
+ */
+typedef struct {
+  /**
+   * Private.
+   */
+  uint64_t _opaque[QUATPROP_CALIBRATION_ESTIMATOR_WORDS];
+} quatprop_calibration_estimator_t;
 
 #ifdef __cplusplus
 extern "C" {
@@ -850,6 +894,121 @@ uint32_t quatprop_abi_version(void);
  * for a value that names none. Never NULL.
  */
 const char *quatprop_status_name(int32_t status);
+
+/**
+ * Sets up `est`: a calibration estimator for samples every `sample_period` s (finite, > 0) that starts
+ * from no error, with the prior standard deviations of the scale factors (`sensitivity_sigma`,
+ * dimensionless: 0.01 for a datasheet's ±1 %) and of the cross-axis terms (`misalignment_sigma`, rad:
+ * 0.0087 for ±0.5°), each 0 to 0.05, and the measurement noise `motion_noise` (rad/√s, finite, > 0: the
+ * density of the inclination drift the gyro did not cause, linear acceleration left after the low-pass;
+ * larger trusts the accelerometer less and learns slower; `QUATPROP_DEFAULT_MOTION_NOISE` for the
+ * default, tuned for a hand-held sensor). The residual bias starts as VQF's motion bias (0.5 °/s).
+ * The Rust `CalibrationEstimator::with_motion_noise`: the same `double`s give the same bits.
+ * `QUATPROP_NON_FINITE_STEP` / `QUATPROP_NON_POSITIVE_STEP` for a bad period, `QUATPROP_INVALID_ESTIMATOR`
+ * for a bad sigma or noise. Any previous content of `est` is ignored; on error `est` is not written.
+ *
+ * # Safety
+ * `est` must be NULL or point to a writable `quatprop_calibration_estimator_t` not in use elsewhere.
+ */
+quatprop_status_t quatprop_calibration_estimator_init(quatprop_calibration_estimator_t *est,
+                                                      double sample_period,
+                                                      double sensitivity_sigma,
+                                                      double misalignment_sigma,
+                                                      double motion_noise);
+
+/**
+ * One sample: the rate `rate[3]` (rad/s, before this estimator's correction; a bias measured at rest
+ * taken out, if there is one: the residual bias it learns is clipped to ±2 °/s) and the accelerometer
+ * `accel[3]` (the same axes; any unit, only its direction is used;
+ * all zero: no reading, the rate still turns the estimator's shadow attitude) over `dt` s (finite and
+ * positive, at most FLT_MAX; used in single precision; the low-pass filter is designed for the init's
+ * period). `QUATPROP_NON_FINITE_RATE`, `QUATPROP_NON_FINITE_AUX` (accelerometer),
+ * `QUATPROP_NON_FINITE_STEP`, `QUATPROP_NON_POSITIVE_STEP` for bad input, `QUATPROP_NON_FINITE_RESULT`
+ * if the arithmetic overflows; on error nothing changes.
+ *
+ * # Safety
+ * `est` must be NULL or point to a `quatprop_calibration_estimator_t` not in use elsewhere; `rate` and
+ * `accel` NULL or 3 readable floats.
+ */
+quatprop_status_t quatprop_calibration_estimator_update(quatprop_calibration_estimator_t *est,
+                                                        const float *rate,
+                                                        const float *accel,
+                                                        double dt);
+
+/**
+ * The rate `rate_in[3]` (rad/s, finite: `QUATPROP_NON_FINITE_RATE` otherwise) corrected with what has
+ * been learned so far, `(I − G)(rate_in − b)`, into `rate_out[3]` (which may be `rate_in`): integrate
+ * this, the correction from before the sample, then give the sample to
+ * `quatprop_calibration_estimator_update`. The same bits as `quatprop_set_calibration` with
+ * `quatprop_calibration_estimator_get_calibration`'s numbers.
+ *
+ * # Safety
+ * `est` must be NULL or point to a readable `quatprop_calibration_estimator_t`; `rate_in` NULL or 3
+ * readable floats, `rate_out` NULL or 3 writable floats.
+ */
+quatprop_status_t quatprop_calibration_estimator_correct(const quatprop_calibration_estimator_t *est,
+                                                         const float *rate_in,
+                                                         float *rate_out);
+
+/**
+ * A bias has just been measured at rest and is now taken out of the rates given to update: the
+ * residual bias restarts at zero with the uncertainty of a rest measurement (0.03 °/s); the gain stays.
+ *
+ * # Safety
+ * `est` must be NULL or point to a `quatprop_calibration_estimator_t` not in use elsewhere.
+ */
+quatprop_status_t quatprop_calibration_estimator_at_rest(quatprop_calibration_estimator_t *est);
+
+/**
+ * The gain correction `I − G` learned so far (the matrix that multiplies the bias-free rate) into
+ * `gain[9]`, and the standard deviation of each of its terms into `std_dev[9]`, both row-major: a term
+ * still at its prior (the sigma given to init) has not been observed (a turn about the vertical shows
+ * none of its own scale; turns at many attitudes show every term).
+ *
+ * # Safety
+ * `est` must be NULL or point to a readable `quatprop_calibration_estimator_t`; `gain` and `std_dev`
+ * NULL or 9 writable floats.
+ */
+quatprop_status_t quatprop_calibration_estimator_get_gain(const quatprop_calibration_estimator_t *est,
+                                                          float *gain,
+                                                          float *std_dev);
+
+/**
+ * The residual bias `b` learned so far (rad/s, the axes of the rates given to update) into `bias[3]`.
+ *
+ * # Safety
+ * `est` must be NULL or point to a readable `quatprop_calibration_estimator_t`; `bias` NULL or 3
+ * writable floats.
+ */
+quatprop_status_t quatprop_calibration_estimator_get_bias(const quatprop_calibration_estimator_t *est,
+                                                          float *bias);
+
+/**
+ * The correction learned so far as a gyro calibration, `w = M (s ⊙ (r − o))`: offset `o` into
+ * `offset[3]` (rad/s; the residual bias), sensitivity `s` into `sensitivity[3]` (the diagonal of
+ * `I − G`), misalignment `M` into `misalignment[9]` (row-major: `I − G`'s columns divided by it) —
+ * `quatprop_set_calibration`'s arguments, which then apply to a state's rate samples what
+ * `quatprop_calibration_estimator_correct` gives, bit for bit:
+ *
+ * ```c
+ * float o[3], s[3], m[9];
+ * if (quatprop_calibration_estimator_get_calibration(&est, o, s, m) == QUATPROP_OK)
+ *     quatprop_set_calibration(&att, o, s, m);
+ * ```
+ *
+ * The state applies it to its readings in sensor axes, before the alignment and the bias stage: it is the
+ * correction for them when the estimator is fed those readings (rad/s in sensor axes, as given to
+ * `quatprop_push_rate`, with the accelerometer in the same axes); its offset then takes out the bias it
+ * learned, and the state's bias stage sees what is left.
+ *
+ * # Safety
+ * `est` must be NULL or point to a readable `quatprop_calibration_estimator_t`; `offset` and
+ * `sensitivity` NULL or 3 writable floats, `misalignment` NULL or 9.
+ */
+quatprop_status_t quatprop_calibration_estimator_get_calibration(const quatprop_calibration_estimator_t *est,
+                                                                 float *offset,
+                                                                 float *sensitivity,
+                                                                 float *misalignment);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -8,9 +8,10 @@
 //! Memory: `quatprop_t` is an opaque block of `QUATPROP_STATE_SIZE` bytes aligned to `QUATPROP_STATE_ALIGN`
 //! that the caller allocates (statically, on the stack, anywhere); the library never allocates. It may be
 //! copied with `memcpy`. A state that `quatprop_init` did not set up (e.g. a zeroed `static`) is refused
-//! with `QUATPROP_NOT_INITIALIZED`.
+//! with `QUATPROP_NOT_INITIALIZED`. The calibration estimator has a block of its own,
+//! `quatprop_calibration_estimator_t` (`QUATPROP_CALIBRATION_ESTIMATOR_SIZE` bytes), kept the same way.
 //!
-//! Errors: every function returns a `quatprop_status_t`; `QUATPROP_OK` (0) is success. Values 1 to 15
+//! Errors: every function returns a `quatprop_status_t`; `QUATPROP_OK` (0) is success. Values 1 to 17
 //! mirror the Rust `quatprop::Error` variants, values from 100 are the C boundary's own. A NULL or
 //! misaligned pointer and an out-of-range enum value get an error code, never undefined behaviour; on any
 //! error the state is unchanged (bursts: see `quatprop_push_counts_burst`). No panic can cross the boundary:
@@ -25,7 +26,13 @@
 
 #[cfg(feature = "rust-baseline")]
 mod baseline;
+mod calibration;
 mod state;
+pub use calibration::{
+    quatprop_calibration_estimator_t, QUATPROP_CALIBRATION_ESTIMATOR_ALIGN,
+    QUATPROP_CALIBRATION_ESTIMATOR_SIZE, QUATPROP_CALIBRATION_ESTIMATOR_WORDS,
+    QUATPROP_DEFAULT_MOTION_NOISE,
+};
 #[cfg(test)]
 mod tests;
 
@@ -42,6 +49,8 @@ use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
 /// 4: the state is 1024 bytes (the bias estimator keeps its window's blocks and a Kalman filter's
 /// variance; `quatprop_set_bias_estimator` takes the window in seconds, the period and the drift),
 /// and its check is a CRC-32C over the whole block, in its last 4 bytes (tag "QPF4").
+/// Added within version 4, changing no layout or value it had: the calibration estimator's own block
+/// (`quatprop_calibration_estimator_t`, tag "QCE1") and its functions, and the status value 17.
 pub const QUATPROP_ABI_VERSION: u32 = 4;
 /// `uint64_t` words in `quatprop_t`.
 pub const QUATPROP_STATE_WORDS: usize = 128;
@@ -136,7 +145,9 @@ static START: [u32; PAYLOAD + 1] = {
     s
 };
 
-/// The CRC-32C register `crc` advanced over `data`, eight bytes per step.
+/// The CRC-32C register `crc` advanced over `data`, eight bytes per step. Inlined into each block's
+/// `checksum` (one per block type): as the only caller's own code, as it was before a second block type.
+#[inline(always)]
 fn crc32c_update(mut crc: u32, data: &[u8]) -> u32 {
     let t = &TABLES;
     let at = |k: usize, x: u32| t[k][(x & 0xFF) as usize];
@@ -166,7 +177,8 @@ fn crc32c(data: &[u8]) -> u32 {
     !crc32c_update(!0, data)
 }
 
-/// Whether every byte of `bytes` is zero (eight at a time).
+/// Whether every byte of `bytes` is zero (eight at a time). Inlined as `crc32c_update`.
+#[inline(always)]
 fn all_zero(bytes: &[u8]) -> bool {
     let mut chunks = bytes.chunks_exact(8);
     let mut any = 0u32;
@@ -190,32 +202,47 @@ fn all_zero(bytes: &[u8]) -> bool {
 /// more per use).
 #[inline(never)]
 fn checksum(b: &Block) -> Option<u32> {
-    let (start, len) = placement(b)?;
-    let (lead, rest) = b.split_at_checked(start)?;
-    let pad = rest.get(len..PAYLOAD - start)?;
-    let data = rest.get(..SUM - start)?;
+    sealed_sum(b, |zeros| START.get(zeros).copied())
+}
+
+/// The checksum of a sealed block of any size (the layout of `PAYLOAD`, `TAG` and `SUM`, counted from
+/// its end): `None` if the length is beyond the payload or a byte outside the encoding is not zero,
+/// otherwise the CRC-32C of every byte before the last 4, started from `start(z)`, the register after the
+/// `z` leading zeros (checked to be zero, then skipped).
+#[inline(always)]
+fn sealed_sum<const N: usize>(
+    b: &[u8; N],
+    start: impl FnOnce(usize) -> Option<u32>,
+) -> Option<u32> {
+    let (start_at, len) = placement(b)?;
+    let (lead, rest) = b.split_at_checked(start_at)?;
+    let pad = rest.get(len..(N - 12).checked_sub(start_at)?)?;
+    let data = rest.get(..(N - 4).checked_sub(start_at)?)?;
     if !all_zero(lead) || !all_zero(pad) {
         return None;
     }
-    Some(!crc32c_update(*START.get(start)?, data))
+    Some(!crc32c_update(start(start_at)?, data))
 }
 
 /// Where the encoding starts and its length: the length is read from the block (`None` beyond
 /// `PAYLOAD`), the start is the last multiple of 4 that leaves room for it before `PAYLOAD` (an aligned
 /// start makes the copy in `encode` word by word); the 0 to 3 bytes between the encoding and the tag are
-/// zeros like those before it.
-fn placement(b: &Block) -> Option<(usize, usize)> {
-    let len = word(b, TAG / 4 + 1) as usize;
-    Some((PAYLOAD.checked_sub(len)? & !3, len))
+/// zeros like those before it. (Any block of this layout: `PAYLOAD = N − 12`.)
+fn placement<const N: usize>(b: &[u8; N]) -> Option<(usize, usize)> {
+    let payload = N.checked_sub(12)?;
+    let len = word(b, payload / 4 + 1) as usize;
+    Some((payload.checked_sub(len)? & !3, len))
 }
 
 /// The checksum the block holds (its last 4 bytes, little-endian).
-fn stored_sum(b: &Block) -> u32 {
-    let [.., x0, x1, x2, x3] = *b;
-    u32::from_le_bytes([x0, x1, x2, x3])
+fn stored_sum<const N: usize>(b: &[u8; N]) -> u32 {
+    match b.get(N.wrapping_sub(4)..) {
+        Some(&[x0, x1, x2, x3]) => u32::from_le_bytes([x0, x1, x2, x3]),
+        _ => 0,
+    }
 }
 
-fn word(b: &Block, i: usize) -> u32 {
+fn word<const N: usize>(b: &[u8; N], i: usize) -> u32 {
     let at = 4 * i;
     match b.get(at..at + 4) {
         Some(&[a, b, c, d]) => u32::from_ne_bytes([a, b, c, d]),
@@ -227,15 +254,31 @@ fn word(b: &Block, i: usize) -> u32 {
 /// for an older version's tag), `QUATPROP_CORRUPTED_STATE` if the length, the leading zeros, the checksum
 /// or the encoding is wrong. Nothing is decoded before the checksum matches.
 fn load(b: &Block) -> Result<Inner, quatprop_status_t> {
-    let tag = word(b, TAG / 4);
-    if tag != MAGIC {
-        return Err(if OLD_MAGICS.contains(&word(b, 0)) {
-            S::QUATPROP_CORRUPTED_STATE
-        } else {
-            S::QUATPROP_NOT_INITIALIZED
-        });
+    if word(b, TAG / 4) != MAGIC && OLD_MAGICS.contains(&word(b, 0)) {
+        return Err(S::QUATPROP_CORRUPTED_STATE);
     }
-    if checksum(b) != Some(stored_sum(b)) {
+    open(b, MAGIC, checksum)
+}
+
+/// `inner` as a block: zeros, encoding, tag, length, checksum.
+fn encode(inner: &Inner) -> Result<Block, quatprop_status_t> {
+    seal(inner, MAGIC, checksum)
+}
+
+/// What a sealed block of any size holds, checked by `sum` (its `checksum`): `QUATPROP_NOT_INITIALIZED`
+/// without the tag `magic`, `QUATPROP_CORRUPTED_STATE` if the length, the zeros, the checksum or the
+/// encoding is wrong. Nothing is decoded before the checksum matches.
+#[inline(always)]
+fn open<const N: usize, T: serde::de::DeserializeOwned>(
+    b: &[u8; N],
+    magic: u32,
+    sum: fn(&[u8; N]) -> Option<u32>,
+) -> Result<T, quatprop_status_t> {
+    let tag = N.checked_sub(12).ok_or(S::QUATPROP_UNKNOWN_ERROR)? / 4;
+    if word(b, tag) != magic {
+        return Err(S::QUATPROP_NOT_INITIALIZED);
+    }
+    if sum(b) != Some(stored_sum(b)) {
         return Err(S::QUATPROP_CORRUPTED_STATE);
     }
     let (start, len) = placement(b).ok_or(S::QUATPROP_CORRUPTED_STATE)?;
@@ -245,29 +288,37 @@ fn load(b: &Block) -> Result<Inner, quatprop_status_t> {
     postcard::from_bytes(bytes).map_err(|_| S::QUATPROP_CORRUPTED_STATE)
 }
 
-/// `inner` as a block: zeros, encoding, tag, length, checksum.
-fn encode(inner: &Inner) -> Result<Block, quatprop_status_t> {
+/// `value` as a sealed block of `N` bytes (zeros, encoding, tag `magic`, length, checksum `sum`);
+/// `QUATPROP_UNKNOWN_ERROR` if it does not fit (the tests show that every value fits its block).
+#[inline(always)]
+fn seal<const N: usize, T: serde::Serialize>(
+    value: &T,
+    magic: u32,
+    sum: fn(&[u8; N]) -> Option<u32>,
+) -> Result<[u8; N], quatprop_status_t> {
     const E: quatprop_status_t = S::QUATPROP_UNKNOWN_ERROR;
-    let mut b: Block = [0; QUATPROP_STATE_SIZE];
-    let (payload, rest) = b.split_at_mut(PAYLOAD);
-    let len = postcard::to_slice(inner, payload).map_err(|_| E)?.len();
-    rest[..4].copy_from_slice(&MAGIC.to_ne_bytes());
+    let payload_len = N.checked_sub(12).ok_or(E)?;
+    let mut b = [0u8; N];
+    let (payload, rest) = b.split_at_mut(payload_len);
+    let len = postcard::to_slice(value, payload).map_err(|_| E)?.len();
+    let rest = rest.get_mut(..12).ok_or(E)?;
+    rest[..4].copy_from_slice(&magic.to_ne_bytes());
     rest[4..8].copy_from_slice(&(len as u32).to_ne_bytes());
     let (start, _) = placement(&b).ok_or(E)?;
     // The encoding moves to `start`, zeros before it (the explicit bounds: no panic path).
-    let payload = b.get_mut(..PAYLOAD).ok_or(E)?;
+    let payload = b.get_mut(..payload_len).ok_or(E)?;
     if len > payload.len() || start > payload.len() - len {
         return Err(E);
     }
     payload.copy_within(..len, start);
     payload.get_mut(..start.min(len)).ok_or(E)?.fill(0);
-    let sum = checksum(&b).ok_or(E)?;
-    b[SUM..].copy_from_slice(&sum.to_le_bytes());
+    let sum = sum(&b).ok_or(E)?;
+    b.get_mut(N - 4..)
+        .ok_or(E)?
+        .copy_from_slice(&sum.to_le_bytes());
     Ok(b)
 }
 
-/// The check ABI 3 had (tag "QPF3" in word 0, the length in word 1, the checksum in word 2, the encoding
-/// from byte 12): a word hash `h ← (h ⊕ w) · 16777619` over every other 32-bit word. Kept only for the tests,
 /// which count what it let through, and for the bench (feature `bench-hooks`), which times it beside the CRC.
 #[cfg(any(test, feature = "bench-hooks"))]
 fn checksum_abi3(b: &Block) -> u32 {
@@ -281,13 +332,13 @@ fn checksum_abi3(b: &Block) -> u32 {
     h
 }
 
-/// Result of every call. Values are fixed (ABI); 1 to 16 mirror `quatprop::Error`.
+/// Result of every call. Values are fixed (ABI); 1 to 17 mirror `quatprop::Error`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum quatprop_status_t {
     /// Success.
     QUATPROP_OK = 0,
-    /// A rate or angle sample (or a bias) is NaN or infinite.
+    /// A rate or angle sample (or a bias, or a rate to correct) is NaN or infinite.
     QUATPROP_NON_FINITE_RATE = 1,
     /// A time step (or period, or clock frequency) is NaN or infinite.
     QUATPROP_NON_FINITE_STEP = 2,
@@ -312,7 +363,9 @@ pub enum quatprop_status_t {
     /// Clock counter width outside 1 to 32 bits.
     QUATPROP_INVALID_CLOCK = 12,
     /// Bias estimator: the window must hold 1 to 2^31 − 1 samples, the period be finite and positive, the
-    /// gate finite and positive, the drift finite and not negative.
+    /// gate finite and positive, the drift finite and not negative. Calibration estimator: each sigma 0 to
+    /// 0.05, the motion noise finite and positive, and with the period, variances that fit a `float`
+    /// (a noise or a period absurdly large).
     QUATPROP_INVALID_ESTIMATOR = 13,
     /// The step overflowed to a non-finite attitude.
     QUATPROP_NON_FINITE_RESULT = 14,
@@ -321,6 +374,9 @@ pub enum quatprop_status_t {
     /// A gyro calibration has a number that is not finite, or `M·diag(sensitivity)` is singular or has
     /// a condition number (∞-norm) above 100.
     QUATPROP_INVALID_CALIBRATION = 16,
+    /// An accelerometer reading given beside a rate (`quatprop_calibration_estimator_update`) is NaN or
+    /// infinite.
+    QUATPROP_NON_FINITE_AUX = 17,
     /// A pointer argument is NULL.
     QUATPROP_NULL_POINTER = 100,
     /// A pointer argument is not aligned for its type.
@@ -362,6 +418,7 @@ fn status(f: Fail) -> quatprop_status_t {
             Error::NonFiniteResult => S::QUATPROP_NON_FINITE_RESULT,
             Error::WrongSampleKind => S::QUATPROP_WRONG_INPUT_KIND,
             Error::InvalidCalibration => S::QUATPROP_INVALID_CALIBRATION,
+            Error::NonFiniteAux => S::QUATPROP_NON_FINITE_AUX,
             _ => S::QUATPROP_UNKNOWN_ERROR,
         },
         Fail::BadEnum => S::QUATPROP_BAD_ENUM,
@@ -1508,6 +1565,8 @@ pub extern "C" fn quatprop_status_name(status: i32) -> *const core::ffi::c_char 
         13 => c"QUATPROP_INVALID_ESTIMATOR",
         14 => c"QUATPROP_NON_FINITE_RESULT",
         15 => c"QUATPROP_UNKNOWN_ERROR",
+        16 => c"QUATPROP_INVALID_CALIBRATION",
+        17 => c"QUATPROP_NON_FINITE_AUX",
         100 => c"QUATPROP_NULL_POINTER",
         101 => c"QUATPROP_MISALIGNED_POINTER",
         102 => c"QUATPROP_BAD_ENUM",

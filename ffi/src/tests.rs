@@ -121,4 +121,56 @@ fn the_default_drift_is_the_libraries() {
     );
 }
 
+/// `quatprop_status_name` names every status value as the header does (16 and 17 were once missing).
+#[test]
+fn every_status_has_its_name() {
+    use quatprop_status_t as S;
+    let all = [
+        S::QUATPROP_OK,
+        S::QUATPROP_NON_FINITE_RATE,
+        S::QUATPROP_NON_FINITE_STEP,
+        S::QUATPROP_NON_POSITIVE_STEP,
+        S::QUATPROP_STEP_ANGLE_BEYOND_STABILITY,
+        S::QUATPROP_GAIN_BEYOND_STABILITY,
+        S::QUATPROP_ZERO_QUATERNION,
+        S::QUATPROP_NON_FINITE_QUATERNION,
+        S::QUATPROP_INVALID_STABILIZER,
+        S::QUATPROP_INVALID_GAIN,
+        S::QUATPROP_NOT_A_ROTATION,
+        S::QUATPROP_TIMESTAMP_NOT_INCREASING,
+        S::QUATPROP_INVALID_CLOCK,
+        S::QUATPROP_INVALID_ESTIMATOR,
+        S::QUATPROP_NON_FINITE_RESULT,
+        S::QUATPROP_UNKNOWN_ERROR,
+        S::QUATPROP_INVALID_CALIBRATION,
+        S::QUATPROP_NON_FINITE_AUX,
+        S::QUATPROP_NULL_POINTER,
+        S::QUATPROP_MISALIGNED_POINTER,
+        S::QUATPROP_BAD_ENUM,
+        S::QUATPROP_NOT_INITIALIZED,
+        S::QUATPROP_WRONG_INPUT_KIND,
+        S::QUATPROP_NOT_CONFIGURED,
+        S::QUATPROP_BAD_ARGUMENT,
+        S::QUATPROP_CORRUPTED_STATE,
+    ];
+    // Every variant is listed: the enum's source has as many.
+    let src = include_str!("lib.rs");
+    let body = &src[src.find("pub enum quatprop_status_t").unwrap()..];
+    let body = &body[..body.find("\n}").unwrap()];
+    let variants = body
+        .lines()
+        .filter(|l| l.trim_start().starts_with("QUATPROP_") && l.contains(" = "))
+        .count();
+    assert_eq!(variants, all.len());
+    for s in all {
+        // SAFETY: the name is a static NUL-terminated string.
+        let name = unsafe { core::ffi::CStr::from_ptr(quatprop_status_name(s as i32)) };
+        assert_eq!(name.to_str().unwrap(), format!("{s:?}"));
+    }
+    // SAFETY: as above.
+    let unknown = unsafe { core::ffi::CStr::from_ptr(quatprop_status_name(18)) };
+    assert_eq!(unknown.to_str().unwrap(), "unknown status");
+}
+
+mod calibration;
 mod check;

@@ -18,8 +18,8 @@ use pyo3::prelude::*;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
-    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
-    CalibrationEstimator, MotionBias, SampleTiming, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CalibrationEstimator, CountScale,
+    FixedBias, FixedPeriod, MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{History, InputModel};

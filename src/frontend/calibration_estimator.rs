@@ -142,7 +142,8 @@ impl<T: Real> CalibrationEstimator<T> {
     ///
     /// # Errors
     /// As [`CalibrationEstimator::new`]; [`Error::InvalidEstimator`] for a noise that is not finite and
-    /// positive.
+    /// positive, or one (with the period) whose vertical variance, `(noise / 0.01 °/s)² / period / 10⁻⁴`,
+    /// or whose bias growth, `period` per sample, overflows `T`.
     pub fn with_motion_noise(
         sample_period: f64,
         sensitivity_sigma: f64,
@@ -171,7 +172,14 @@ impl<T: Real> CalibrationEstimator<T> {
         // The measurement's variance per sample: a density over one period.
         let noise = motion_noise / BIAS_UNIT;
         let w_motion = noise * noise / ts;
-        if !(w_motion.is_finite() && T::from_f64(w_motion).is_finite()) {
+        // The vertical variance is the largest (10⁴ times the horizontal one) and the bias growth grows
+        // with the period: both must be numbers in f64 and in `T`, or the filter would keep an infinity
+        // and never update.
+        let w_vertical = w_motion / 1.0e-4;
+        if !([w_vertical, v]
+            .iter()
+            .all(|&x| x.is_finite() && T::from_f64(x).is_finite()))
+        {
             return Err(Error::InvalidEstimator);
         }
         let sigma0 = [
@@ -201,7 +209,7 @@ impl<T: Real> CalibrationEstimator<T> {
             sigma0: [t(sigma0[0]), t(sigma0[1])],
             gain_walk: t((Self::GAIN_WALK / GAIN_UNIT) * (Self::GAIN_WALK / GAIN_UNIT) * ts),
             w_motion: t(w_motion),
-            w_vertical: t(w_motion / 1.0e-4),
+            w_vertical: t(w_vertical),
             clip_e: t(200.0),
             clip_gain: t(Self::GAIN_LIMIT / GAIN_UNIT),
         })
@@ -408,10 +416,14 @@ impl<T: Real> CalibrationEstimator<T> {
         for (th, kr) in self.theta.iter_mut().zip(k.iter()) {
             *th += kr[0] * e[0] + kr[1] * e[1] + kr[2] * e[2];
         }
-        // P −= K (P Hᵀ)ᵀ, kept symmetric by computing one triangle.
-        for (i, ki) in k.iter().enumerate() {
-            for (j, phj) in ph.iter().enumerate().skip(i) {
-                let x = self.p[i][j] - (ki[0] * phj[0] + ki[1] * phj[1] + ki[2] * phj[2]);
+        // P −= K (P Hᵀ)ᵀ, kept symmetric by computing one triangle. Indexed by ranges: with iterators
+        // (`enumerate().skip(i)`) the optimizer no longer proved `p[j][i]` in bounds, and a panic path
+        // reached the C API's `update` (its link-time proof caught it).
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..N {
+            for j in i..N {
+                let x =
+                    self.p[i][j] - (k[i][0] * ph[j][0] + k[i][1] * ph[j][1] + k[i][2] * ph[j][2]);
                 self.p[i][j] = x;
                 self.p[j][i] = x;
             }

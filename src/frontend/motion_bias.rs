@@ -60,7 +60,9 @@ impl<T: Real> MotionBias<T> {
     /// forgetting factor 10⁻⁴; the residual restarts at rest with an uncertainty of 0.03 °/s.
     ///
     /// # Errors
-    /// [`Error::NonPositiveStep`] / [`Error::NonFiniteStep`] for a period that is not finite and positive.
+    /// [`Error::NonPositiveStep`] / [`Error::NonFiniteStep`] for a period that is not finite and positive;
+    /// [`Error::InvalidEstimator`] for one so long (beyond 10³⁰⁶ s; 10³⁸ s in f32) that the bias
+    /// variance's growth per sample overflows.
     pub fn new(sample_period: f64) -> Result<Self, Error> {
         if !sample_period.is_finite() {
             return Err(Error::NonFiniteStep);
@@ -72,6 +74,11 @@ impl<T: Real> MotionBias<T> {
         let p0 = (0.5 * 100.0_f64) * (0.5 * 100.0);
         let v = (0.1 * 100.0_f64) * (0.1 * 100.0) * ts / 100.0;
         let p_motion = (0.1 * 100.0_f64) * (0.1 * 100.0);
+        // For a period beyond 10³⁰⁶ s (10³⁸ s in f32) the growth overflows: an infinite variance would
+        // stop the filter learning.
+        if !(v.is_finite() && T::from_f64(v).is_finite()) {
+            return Err(Error::InvalidEstimator);
+        }
         let w_motion = p_motion * p_motion / v + p_motion;
         let p_rest = (0.03 * 100.0_f64) * (0.03 * 100.0);
         let t = T::from_f64;

@@ -325,7 +325,7 @@ fn the_crc_detects_every_error_of_up_to_3_bits_and_every_32_bit_burst() {
 }
 
 /// The rank over GF(2) of 32-bit vectors.
-fn rank(v: &[u32]) -> usize {
+pub(super) fn rank(v: &[u32]) -> usize {
     let mut basis = [0u32; 32]; // basis[b]: a vector whose highest set bit is b
     let mut r = 0;
     for &x in v {

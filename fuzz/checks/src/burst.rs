@@ -30,12 +30,7 @@ use std::fmt::Debug;
 
 /// Decodes and checks one input.
 pub fn run(data: &[u8]) {
-    let mut b = Bytes::new(data);
-    if b.bool() {
-        config::<f32>(&mut b)
-    } else {
-        config::<f64>(&mut b)
-    }
+    crate::by_precision(data, config::<f32>, config::<f64>)
 }
 
 fn config<T: Fz>(b: &mut Bytes<'_>) {

@@ -23,12 +23,7 @@ use quatprop::{Error, GyroSample, Propagator, Quat, Vec3};
 
 /// Decodes and checks one input.
 pub fn run(data: &[u8]) {
-    let mut b = Bytes::new(data);
-    if b.bool() {
-        check::<f32>(&mut b)
-    } else {
-        check::<f64>(&mut b)
-    }
+    crate::by_precision(data, check::<f32>, check::<f64>)
 }
 
 fn check<T: Fz>(b: &mut Bytes<'_>) {

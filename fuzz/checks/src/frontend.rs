@@ -85,7 +85,7 @@ fn check<T: Fz>(b: &mut Bytes<'_>, which: usize) {
 }
 
 /// An f64 from the bytes: raw bits, a special value, or one of `plausible`.
-fn f64_from(b: &mut Bytes<'_>, plausible: [f64; 4]) -> f64 {
+pub(crate) fn f64_from(b: &mut Bytes<'_>, plausible: [f64; 4]) -> f64 {
     match b.below(8) {
         0 => f64::from_bits(b.u64()),
         1 => SPECIAL[b.below(16)],
@@ -888,6 +888,12 @@ fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
             Ok(m) => {
                 assert!(period > 0.0 && period.is_finite());
                 Some(m)
+            }
+            Err(Error::InvalidEstimator) => {
+                // Only a period whose bias growth per sample, 10·10·period/100, overflows T.
+                let growth = (0.1 * 100.0_f64) * (0.1 * 100.0) * period / 100.0;
+                assert!(period > 0.0 && !(growth.is_finite() && T::from_f64(growth).is_finite()));
+                None
             }
             Err(e) => {
                 assert!(matches!(e, Error::NonFiniteStep | Error::NonPositiveStep));

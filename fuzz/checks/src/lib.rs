@@ -12,6 +12,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
 
 pub mod burst;
+pub mod calibration;
 pub mod conversions;
 pub mod delta;
 pub mod dispatch;
@@ -206,6 +207,17 @@ impl Fz for f64 {
         f64::from(v)
     }
     const NAME: &'static str = "f64";
+}
+
+/// One input's first choice, the precision (`true`: f32), then the rest of it to `f32` or `f64`: the same
+/// check instantiated for each. The start of every target that covers both precisions the same way.
+pub fn by_precision(data: &[u8], f32: fn(&mut Bytes<'_>), f64: fn(&mut Bytes<'_>)) {
+    let mut b = Bytes::new(data);
+    if b.bool() {
+        f32(&mut b)
+    } else {
+        f64(&mut b)
+    }
 }
 
 /// The bit patterns of a quaternion's components.

@@ -40,12 +40,7 @@ use std::fmt::Debug;
 
 /// Decodes and checks one input.
 pub fn run(data: &[u8]) {
-    let mut b = Bytes::new(data);
-    if b.bool() {
-        config::<f32>(&mut b)
-    } else {
-        config::<f64>(&mut b)
-    }
+    crate::by_precision(data, config::<f32>, config::<f64>)
 }
 
 /// A stabilizer kind, `Every(0)` included.

@@ -18,11 +18,12 @@ fn target(name: &str) -> fn(&[u8]) {
         "precision" => checks::precision::run,
         "kahan" => checks::kahan::run,
         "estimator" => checks::estimator::run,
+        "calibration" => checks::calibration::run,
         other => panic!("no fuzz target {other}"),
     }
 }
 
-const TARGETS: [&str; 9] = [
+const TARGETS: [&str; 10] = [
     "push",
     "burst",
     "frontend",
@@ -32,6 +33,7 @@ const TARGETS: [&str; 9] = [
     "precision",
     "kahan",
     "estimator",
+    "calibration",
 ];
 
 #[test]
