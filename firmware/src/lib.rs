@@ -3,13 +3,15 @@
 //! them all), the SysTick instruction counter, the one exit/panic module every program uses, and the
 //! embedded-hal driver demo: a scripted ICM-42688-P on SPI (`device_model`) read by the `icm426xx` driver into
 //! the quick start (`driver_demo`; both also compiled on the host); the example estimator on a BROAD excerpt
-//! (`estimator_run`, also compiled on the host).
+//! (`estimator_run`, also compiled on the host); a body turning under gravity as the front end's in-motion
+//! estimators see it (`motion`).
 #![cfg_attr(not(test), no_std)]
 
 pub mod configs;
 pub mod device_model;
 pub mod driver_demo;
 pub mod estimator_run;
+pub mod motion;
 /// The README's quick start (the crate `quatprop-quickstart`, firmware/quickstart/).
 pub use quatprop_quickstart as quickstart;
 pub mod scenes;

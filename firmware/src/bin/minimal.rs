@@ -6,7 +6,9 @@
 //! With `estimator-predict`, also the estimator's predict step every 10th step (`error_state::Step::between`
 //! the attitudes 10 ms apart, then `covariance::Ud::<f32, 6>::predict`); with `estimator`, also one scalar
 //! `Ud::update` and a correction (`rotate_body` + `correct_bias`) at the end: what the estimator's
-//! covariance adds to a firmware's flash.
+//! covariance adds to a firmware's flash. With `calibration-estimator`, the rates go through the front end's
+//! `frontend::CalibrationEstimator` (built from constants; `correct` before each push, `update` with the
+//! sample and a black-boxed accelerometer after it): what learning the gyro's gain and bias in motion adds.
 #![no_std]
 #![no_main]
 // The baseline names none of the configuration below.
@@ -18,6 +20,8 @@ use cortex_m_rt::entry;
 use quatprop::covariance::Ud;
 #[cfg(feature = "estimator-predict")]
 use quatprop::error_state::{GyroNoise, Step};
+#[cfg(feature = "calibration-estimator")]
+use quatprop::frontend::CalibrationEstimator;
 use quatprop::stabilize::FirstOrder;
 use quatprop::{input, scheme, GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::exit::exit;
@@ -84,11 +88,33 @@ fn main() -> ! {
                 (Ok(n), Ok(u)) => (n, u, p.attitude()),
                 _ => exit(false),
             };
+            #[cfg(feature = "calibration-estimator")]
+            let mut cal = match CalibrationEstimator::<f32>::new(1.0e-3, 0.01, 0.0087) {
+                Ok(c) => c,
+                Err(_) => exit(false),
+            };
             // 1001 samples: the first only starts the history.
             for _i in 0..=1000 {
                 // black_box: the inputs are data, as from a sensor.
                 let w = black_box(Vec3::new(0.0_f32, 0.0, 1.0));
-                refused |= p.push(GyroSample::new(w), black_box(1.0e-3)).is_err();
+                // With the calibration estimator, the correction learned before the sample (the
+                // identity over this second: its start-up takes 3 s), then the sample learned from.
+                #[cfg(feature = "calibration-estimator")]
+                let s = cal.correct(GyroSample::new(w));
+                #[cfg(not(feature = "calibration-estimator"))]
+                let s = GyroSample::new(w);
+                refused |= p.push(s, black_box(1.0e-3)).is_err();
+                #[cfg(feature = "calibration-estimator")]
+                if cal
+                    .update(
+                        w,
+                        black_box(Vec3::new(0.0_f32, 0.0, 9.81)),
+                        black_box(1.0e-3),
+                    )
+                    .is_err()
+                {
+                    refused = true;
+                }
                 #[cfg(feature = "estimator-predict")]
                 if _i % 10 == 0 {
                     let end = p.attitude();

@@ -5,8 +5,9 @@
 //! `quatprop_firmware::configs`. The panic handler is the `panic-never` crate's, which references a symbol
 //! that does not exist, so if any panic path is still reachable after optimization the link fails. The
 //! sensor front end (`CountScale`, `Calibration`, `AxisRemap`, `Alignment`, `FixedBias`, `BiasEstimator` (with its
-//! drift, noise model, accelerometer gate, temperature model and variance), `MotionBias`, `SampleTiming`,
-//! `FixedPeriod`, `TickClock`), the noise identification (`noise::AllanVariance` and `NoiseFit`) and the
+//! drift, noise model, accelerometer gate, temperature model and variance), `MotionBias`,
+//! `CalibrationEstimator` (`with_motion_noise`, `correct`, `update`, `at_rest` and the getters),
+//! `SampleTiming`, `FixedPeriod`, `TickClock`), the noise identification (`noise::AllanVariance` and `NoiseFit`) and the
 //! fixed-point propagator (`fixed::Q30Propagator`: `new`, `push`, `push_burst`,
 //! `restart_input`, the getters) are called once, with opaque inputs, in every image; `start` and the FIFO bursts
 //! (`push_burst` at a fixed period, `push_burst_timed` with sensor ticks) for every input model ×
@@ -45,8 +46,8 @@ use quatprop::covariance::Ud;
 use quatprop::error_state::{GyroNoise, Step};
 use quatprop::fixed::Q30Propagator;
 use quatprop::frontend::{
-    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
-    MotionBias, SampleTiming, TickClock,
+    Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CalibrationEstimator, CountScale,
+    FixedBias, FixedPeriod, MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::{ConingKind, TwoSample};
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
@@ -271,6 +272,32 @@ fn front_end() {
         }
         m.at_rest();
         black_box(m.bias());
+    }
+    let calibration = CalibrationEstimator::<f32>::with_motion_noise(
+        black_box(1.0e-3),
+        black_box(0.01),
+        black_box(0.0087),
+        black_box(3.0e-3),
+    );
+    if let Ok(mut c) = calibration {
+        for _ in 0..black_box(3) {
+            let rate = black_box(c.correct(black_box(s)).rate);
+            let _ = black_box(c.update(
+                black_box(rate),
+                black_box(Vec3::new(0.1, 0.0, 9.8)),
+                black_box(1.0e-3),
+            ));
+        }
+        if black_box(true) {
+            c.at_rest();
+        }
+        black_box((
+            c.calibration(),
+            c.gain(),
+            c.gain_std_dev(),
+            c.gain_observed(),
+        ));
+        black_box((c.bias(), c.bias_std_dev()));
     }
     let timing = SampleTiming::<f32>::interval_mean().with_group_delay(black_box(2.0e-3));
     if let Ok(t) = timing {

@@ -9,9 +9,18 @@
 //! - `Step::between` alone, `Ud::predict` alone, one scalar `Ud::update` (an inclination row) and a
 //!   correction (`Propagator::rotate_body` + `correct_bias`), per call over 64 calls.
 //!
+//! Then the front end's in-motion estimators on a body turning under gravity at 1 kHz
+//! (`quatprop_firmware::motion`: a gyro with a gain error and a residual bias, the accelerometer), past
+//! their 3 s start-up so that their Kalman filters run on every sample: `frontend::CalibrationEstimator`
+//! (`correct` of the rate, then `update`: twelve states, bias and gain) and, for comparison,
+//! `frontend::MotionBias` (the bias subtracted, then `update`: three states), per sample over 64 samples
+//! (four loops of 16, each inside one wrap of SysTick).
+//!
 //! Each figure is (instructions of the loop with the call − instructions of the same loop without it) / n,
-//! with opaque inputs (`black_box`) and results kept. Prints `bench estimator <what> <figure>`; exits 1 if
-//! any call was refused or the covariance stopped being finite and positive.
+//! with opaque inputs (`black_box`) and results kept. Prints `bench estimator <what> <figure>` and
+//! `bench front-end <what> <figure>`; exits 1 if any call was refused, the covariance stopped being finite
+//! and positive, or the calibration estimator's gain covariance did not shrink over its samples (its
+//! Kalman update did not run).
 #![no_std]
 #![no_main]
 
@@ -20,6 +29,7 @@ use cortex_m_rt::entry;
 use quatprop::accumulate::Plain;
 use quatprop::covariance::Ud;
 use quatprop::error_state::{GyroNoise, Step};
+use quatprop::frontend::{CalibrationEstimator, MotionBias};
 use quatprop::input::History;
 use quatprop::scheme::ExpMap;
 use quatprop::stabilize::FirstOrder;
@@ -27,6 +37,7 @@ use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::configs::Input;
 use quatprop_firmware::exit::{exit, fail};
 use quatprop_firmware::icount::Counter;
+use quatprop_firmware::motion::{Motion, PERIOD, WARM_UP};
 
 /// Step (s).
 const H: f32 = 1.0e-3;
@@ -288,6 +299,120 @@ fn estimator(c: &Counter, ok: &mut bool) {
     report("rotate_body+correct_bias", v);
 }
 
+/// Samples per loop of the front end's counts (16 × up to some 10 000 instructions: inside one wrap).
+const FRONT_CHUNK: usize = 16;
+/// Loops of the front end's counts.
+const FRONT_CHUNKS: usize = 4;
+/// Samples of the front end's counts.
+const FRONT_SAMPLES: usize = FRONT_CHUNK * FRONT_CHUNKS;
+
+/// A gyro reading and an accelerometer sample.
+type Pair = (Vec3<f32>, Vec3<f32>);
+
+/// Instructions of `CalibrationEstimator::correct` of each reading then `update` (or of the loop alone)
+/// over `samples`. Sets `refused` on any refusal.
+#[inline(never)]
+fn calibrations(
+    c: &Counter,
+    est: &mut CalibrationEstimator<f32>,
+    samples: &[Pair],
+    with: bool,
+    refused: &mut bool,
+) -> u32 {
+    let t0 = c.now();
+    for pair in samples {
+        let ((w, a), dt) = black_box((*pair, PERIOD));
+        if with {
+            black_box(est.correct(GyroSample::new(w)));
+            *refused |= est.update(w, a, dt).is_err();
+        }
+    }
+    Counter::instructions(Counter::ticks(t0, c.now()))
+}
+
+/// Instructions of `MotionBias`'s bias subtracted from each reading then `update` (or of the loop alone)
+/// over `samples`. Sets `refused` on any refusal.
+#[inline(never)]
+fn motion_biases(
+    c: &Counter,
+    est: &mut MotionBias<f32>,
+    samples: &[Pair],
+    with: bool,
+    refused: &mut bool,
+) -> u32 {
+    let t0 = c.now();
+    for pair in samples {
+        let ((w, a), dt) = black_box((*pair, PERIOD));
+        if with {
+            black_box(w - est.bias());
+            *refused |= est.update(w, a, dt).is_err();
+        }
+    }
+    Counter::instructions(Counter::ticks(t0, c.now()))
+}
+
+/// The sum of the gain's standard deviations (a Kalman update shrinks it; nothing else changes it).
+fn gain_spread(est: &CalibrationEstimator<f32>) -> f32 {
+    est.gain_std_dev().iter().flatten().sum()
+}
+
+/// The front end's in-motion estimators at 1 kHz on `quatprop_firmware::motion`'s body, past their start-up
+/// (3.1 s of samples first); prints `bench front-end <what> <instructions ×100 per sample>`.
+fn front_end(c: &Counter, ok: &mut bool) {
+    let report = |what: &str, v: u32| {
+        defmt::println!(
+            "bench front-end {=str} {=u32}.{=u32:02}",
+            what,
+            v / 100,
+            v % 100
+        );
+    };
+    let (Ok(mut cal), Ok(mut mb)) = (
+        CalibrationEstimator::<f32>::new(1.0e-3, 0.01, 0.0087),
+        MotionBias::<f32>::new(1.0e-3),
+    ) else {
+        *ok = false;
+        return;
+    };
+    let mut motion = Motion::new();
+    for _ in 0..WARM_UP {
+        let (w, a) = motion.next_sample();
+        black_box(cal.correct(GyroSample::new(w)));
+        *ok &= cal.update(w, a, PERIOD).is_ok();
+        black_box(w - mb.bias());
+        *ok &= mb.update(w, a, PERIOD).is_ok();
+    }
+    let mut samples = [(Vec3::ZERO, Vec3::ZERO); FRONT_SAMPLES];
+    for s in samples.iter_mut() {
+        *s = motion.next_sample();
+    }
+    let samples = black_box(samples);
+    let mut refused = false;
+    let spread = gain_spread(&cal);
+    let (mut with, mut without) = (0, 0);
+    for chunk in samples.chunks(FRONT_CHUNK) {
+        with += calibrations(c, &mut cal, chunk, true, &mut refused);
+        without += calibrations(c, &mut cal, chunk, false, &mut refused);
+    }
+    // The Kalman update ran: the gain's uncertainty shrank over the counted samples.
+    *ok &= gain_spread(&cal) < spread;
+    report(
+        "CalibrationEstimator::correct+update",
+        per(with, without, FRONT_SAMPLES as u32),
+    );
+    let (mut with, mut without) = (0, 0);
+    for chunk in samples.chunks(FRONT_CHUNK) {
+        with += motion_biases(c, &mut mb, chunk, true, &mut refused);
+        without += motion_biases(c, &mut mb, chunk, false, &mut refused);
+    }
+    *ok &= mb.bias().is_finite();
+    report(
+        "MotionBias::bias+update",
+        per(with, without, FRONT_SAMPLES as u32),
+    );
+    *ok &= !refused;
+}
+
 #[entry]
 fn main() -> ! {
     let Some(cp) = cortex_m::Peripherals::take() else {
@@ -297,5 +422,7 @@ fn main() -> ! {
     let mut ok = true;
     estimator(&c, &mut ok);
     defmt::println!("bench estimator done");
+    front_end(&c, &mut ok);
+    defmt::println!("bench front-end done");
     exit(ok)
 }

@@ -6,8 +6,11 @@
 //! polynomial / Taylor paths) and 0.3 rad steps (300 rad/s at 1 kHz: the exponential maps' trigonometric
 //! branch, which calls libm). Then the estimator's predict step (issue 28) in f32: `Step::between` two
 //! attitudes with `matrices()`, `covariance::Ud::<f32, 6>::predict` and one scalar `Ud::update`, each on
-//! its own (the `Ud` copied into the measured call, the matrices and row prepared outside it). Exits with
-//! status 1 if any depth exceeds its bound.
+//! its own (the `Ud` copied into the measured call, the matrices and row prepared outside it). Then the front
+//! end's in-motion estimators past their 3 s start-up (`quatprop_firmware::motion`'s body at 1 kHz, so that
+//! their Kalman filters run): `frontend::CalibrationEstimator::correct` + `update` and
+//! `frontend::MotionBias`'s bias + `update`, each on its own, the estimator copied into the measured call.
+//! Exits with status 1 if any depth exceeds its bound.
 //! Run: `cd firmware && cargo run --release --bin stack`.
 #![no_std]
 #![no_main]
@@ -17,11 +20,13 @@ use cortex_m_rt::entry;
 use quatprop::accumulate::Accumulator;
 use quatprop::covariance::Ud;
 use quatprop::error_state::{GyroNoise, Step};
+use quatprop::frontend::{CalibrationEstimator, MotionBias};
 use quatprop::scheme::Scheme;
 use quatprop::stabilize::Stabilizer;
-use quatprop::{Propagator, Quat, Vec3};
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::configs::{each_input, Input, Label, Visitor};
 use quatprop_firmware::exit::exit;
+use quatprop_firmware::motion::{Motion, PERIOD, WARM_UP};
 
 /// Bound for steps on the polynomial / Taylor paths (bytes). Measured with rustc 1.95 (quatprop 0.2): 248
 /// (Hold + Euler) to 1012 (History + SchemeKind + Normalize + Kahan); DeltaAngles needs 840–930. The bound
@@ -33,9 +38,14 @@ const BOUND_LARGE: usize = 2048;
 /// Bound for each of the estimator's calls (bytes). Measured with rustc 1.95: 1036 (predict, the `Ud` copy
 /// included), 896 (`Step::between` with its matrices), 588 (update); about 25 % over the largest.
 const BOUND_ESTIMATOR: usize = 1280;
+/// Bound for each of the front end's in-motion estimators' samples (bytes, the estimator's copy included).
+/// Measured with rustc 1.95: 4528 (`CalibrationEstimator`: its 1152-byte value, the copy `update` keeps to
+/// restore on a non-finite result, the 12-state filter's matrices), 1304 (`MotionBias`); about 25 % over
+/// the largest.
+const BOUND_FRONT_END: usize = 5632;
 const PAINT: u32 = 0xA5A5_A5A5;
-/// Painted depth below the measuring frame (bytes).
-const DEPTH: usize = 4096;
+/// Painted depth below the measuring frame (bytes): above every bound.
+const DEPTH: usize = 8192;
 /// Margin left unpainted under the measuring function's own frame (bytes).
 const MARGIN: usize = 64;
 
@@ -211,6 +221,49 @@ fn estimator() -> bool {
     ok_b == 1 && ok_p == 1 && ok_u == 1 && within(between) && within(predict) && within(update)
 }
 
+/// The front end's in-motion estimators past their start-up, one sample each, painted on its own; prints
+/// `stack front-end calibration=<bytes> motion-bias=<bytes> size=<bytes>/<bytes> (bound <bytes>)` (the
+/// sizes: of the two estimators' values).
+fn front_end() -> bool {
+    let (Ok(mut cal), Ok(mut mb)) = (
+        CalibrationEstimator::<f32>::new(1.0e-3, 0.01, 0.0087),
+        MotionBias::<f32>::new(1.0e-3),
+    ) else {
+        return false;
+    };
+    let mut motion = Motion::new();
+    let mut ok = true;
+    for _ in 0..WARM_UP {
+        let (w, a) = motion.next_sample();
+        ok &= cal.update(w, a, PERIOD).is_ok() && mb.update(w, a, PERIOD).is_ok();
+    }
+    let (w, a) = black_box(motion.next_sample());
+    let (calibration, ok_c) = measure(&|| {
+        let mut e = black_box(cal);
+        black_box(e.correct(GyroSample::new(w)));
+        let r = e.update(w, a, PERIOD).is_ok();
+        black_box(e);
+        u64::from(r)
+    });
+    let (motion_bias, ok_m) = measure(&|| {
+        let mut e = black_box(mb);
+        black_box(w - e.bias());
+        let r = e.update(w, a, PERIOD).is_ok();
+        black_box(e);
+        u64::from(r)
+    });
+    defmt::println!(
+        "stack front-end calibration={=usize} motion-bias={=usize} size={=usize}/{=usize} (bound {=usize})",
+        calibration,
+        motion_bias,
+        core::mem::size_of::<CalibrationEstimator<f32>>(),
+        core::mem::size_of::<MotionBias<f32>>(),
+        BOUND_FRONT_END
+    );
+    let within = |d: usize| d > 0 && d <= BOUND_FRONT_END;
+    ok && ok_c == 1 && ok_m == 1 && within(calibration) && within(motion_bias)
+}
+
 fn at(l: Option<Label>) -> Label {
     l.unwrap_or(Label {
         input: "-",
@@ -249,5 +302,6 @@ fn main() -> ! {
     );
     defmt::println!("stack configurations={=u32}", w.configurations);
     let estimator_ok = estimator();
-    exit(w.ok && estimator_ok)
+    let front_end_ok = front_end();
+    exit(w.ok && estimator_ok && front_end_ok)
 }
