@@ -6,30 +6,10 @@
 #[path = "../examples/estimator/filter.rs"]
 mod filter;
 
+mod support;
 use filter::{Filter, FilterError, Params, Pushed};
 use quatprop::{Quat, Vec3};
-
-/// A small deterministic generator (xorshift64*) and Gaussian pairs by Box–Muller, in f64.
-struct Noise(u64);
-impl Noise {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
-    }
-    fn vec(&mut self, sigma: f64) -> Vec3<f64> {
-        Vec3::new(
-            self.gauss() * sigma,
-            self.gauss() * sigma,
-            self.gauss() * sigma,
-        )
-    }
-}
+use support::GaussNoise as Noise;
 
 /// The true body rate at time t (rad/s): still for the first 20 s, then a slow tumbling motion.
 fn rate(t: f64) -> Vec3<f64> {

@@ -202,28 +202,8 @@ impl Filter {
 }
 // [guide: end]
 
-/// A small deterministic generator (xorshift64*) and Gaussian samples by Box–Muller, in f64.
-struct Noise(u64);
-
-impl Noise {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
-    }
-    fn vec(&mut self, sigma: f64) -> Vec3<f64> {
-        Vec3::new(
-            self.gauss() * sigma,
-            self.gauss() * sigma,
-            self.gauss() * sigma,
-        )
-    }
-}
+mod support;
+use support::GaussNoise as Noise;
 
 /// The true body rate (rad/s, body axes): still for the first 10 s, then a tumbling motion that turns
 /// every body axis through the vertical (up to about 1.1 rad/s).

@@ -8,71 +8,91 @@ use quatprop_quickstart::Attitude;
 
 const _: () = assert!(core::mem::size_of::<Attitude>() <= core::mem::size_of::<quatprop_t>());
 const _: () = assert!(core::mem::align_of::<Attitude>() <= core::mem::align_of::<quatprop_t>());
+const _: () = assert!(core::mem::size_of::<KindAttitude>() <= core::mem::size_of::<quatprop_t>());
+const _: () = assert!(core::mem::align_of::<KindAttitude>() <= core::mem::align_of::<quatprop_t>());
 
-/// Writes a new `Attitude` into `s`; 1 on success.
-///
-/// # Safety
-/// `s` must be NULL or point to a writable `quatprop_t` not in use elsewhere.
-#[no_mangle]
-pub unsafe extern "C" fn quatprop_baseline_init(s: *mut quatprop_t) -> u32 {
-    match (check(s), Attitude::new()) {
-        (Ok(()), Ok(a)) => {
-            // SAFETY: non-null and aligned (checked), writable per the contract; Attitude fits (asserted).
-            unsafe { s.cast::<Attitude>().write(a) };
-            1
+/// The three C functions of one quick start `$ty`: set up, feed a FIFO read, read back.
+macro_rules! c_functions {
+    ($ty:ty, $init:ident, $on_fifo:ident, $attitude:ident) => {
+        /// Writes a new quick start into `s`; 1 on success.
+        ///
+        /// # Safety
+        /// `s` must be NULL or point to a writable `quatprop_t` not in use elsewhere.
+        #[no_mangle]
+        pub unsafe extern "C" fn $init(s: *mut quatprop_t) -> u32 {
+            match (check(s), <$ty>::new()) {
+                (Ok(()), Ok(a)) => {
+                    // SAFETY: non-null and aligned (checked), writable per the contract; it fits
+                    // (asserted above).
+                    unsafe { s.cast::<$ty>().write(a) };
+                    1
+                }
+                _ => 0,
+            }
         }
-        _ => 0,
-    }
-}
 
-/// `Attitude::on_fifo` on `n` samples `counts[3 * n]`.
-///
-/// # Safety
-/// `s` must point to a `quatprop_t` set up by `quatprop_baseline_init`; `counts` to `3 * n` int16s.
-#[no_mangle]
-pub unsafe extern "C" fn quatprop_baseline_on_fifo(
-    s: *mut quatprop_t,
-    counts: *const i16,
-    n: usize,
-) {
-    if check(s).is_err() || check(counts).is_err() {
-        return;
-    }
-    // SAFETY: checked non-null and aligned; initialized and exclusive, `3 * n` readable per the contract.
-    let (a, fifo) = unsafe {
-        (
-            &mut *s.cast::<Attitude>(),
-            core::slice::from_raw_parts(counts.cast::<[i16; 3]>(), n),
-        )
+        /// `on_fifo` on `n` samples `counts[3 * n]`.
+        ///
+        /// # Safety
+        /// `s` must point to a `quatprop_t` set up by this quick start's init; `counts` to `3 * n` int16s.
+        #[no_mangle]
+        pub unsafe extern "C" fn $on_fifo(s: *mut quatprop_t, counts: *const i16, n: usize) {
+            if check(s).is_err() || check(counts).is_err() {
+                return;
+            }
+            // SAFETY: checked non-null and aligned; initialized and exclusive, `3 * n` readable per the
+            // contract.
+            let (a, fifo) = unsafe {
+                (
+                    &mut *s.cast::<$ty>(),
+                    core::slice::from_raw_parts(counts.cast::<[i16; 3]>(), n),
+                )
+            };
+            a.on_fifo(fifo);
+        }
+
+        /// The attitude and the refused count.
+        ///
+        /// # Safety
+        /// `s` must point to a `quatprop_t` set up by this quick start's init; `out` and `refused`
+        /// writable.
+        #[no_mangle]
+        pub unsafe extern "C" fn $attitude(
+            s: *const quatprop_t,
+            out: *mut quatprop_quat_t,
+            refused: *mut u32,
+        ) {
+            if check(s).is_err() || check(out).is_err() || check(refused).is_err() {
+                return;
+            }
+            // SAFETY: checked non-null and aligned; initialized, `out`/`refused` writable per the contract.
+            unsafe {
+                let (q, r) = (*s.cast::<$ty>()).attitude();
+                out.write(quatprop_quat_t {
+                    w: q.w,
+                    x: q.x,
+                    y: q.y,
+                    z: q.z,
+                });
+                refused.write(r);
+            }
+        }
     };
-    a.on_fifo(fifo);
 }
 
-/// The attitude and the refused count.
-///
-/// # Safety
-/// `s` must point to a `quatprop_t` set up by `quatprop_baseline_init`; `out` and `refused` writable.
-#[no_mangle]
-pub unsafe extern "C" fn quatprop_baseline_attitude(
-    s: *const quatprop_t,
-    out: *mut quatprop_quat_t,
-    refused: *mut u32,
-) {
-    if check(s).is_err() || check(out).is_err() || check(refused).is_err() {
-        return;
-    }
-    // SAFETY: checked non-null and aligned; initialized, `out`/`refused` writable per the contract.
-    unsafe {
-        let (q, r) = (*s.cast::<Attitude>()).attitude();
-        out.write(quatprop_quat_t {
-            w: q.w,
-            x: q.x,
-            y: q.y,
-            z: q.z,
-        });
-        refused.write(r);
-    }
-}
+c_functions!(
+    Attitude,
+    quatprop_baseline_init,
+    quatprop_baseline_on_fifo,
+    quatprop_baseline_attitude
+);
+// The same with the run-time scheme and stabilizer.
+c_functions!(
+    KindAttitude,
+    quatprop_baseline_kinds_init,
+    quatprop_baseline_kinds_on_fifo,
+    quatprop_baseline_kinds_attitude
+);
 
 /// The quick start's `Attitude` with the core's own run-time scheme and stabilizer (`SchemeKind`,
 /// `StabilizerKind`) and everything else static: splits the C API's cost into the core's run-time dispatch
@@ -134,71 +154,3 @@ mod kinds {
     }
 }
 use kinds::KindAttitude;
-
-const _: () = assert!(core::mem::size_of::<KindAttitude>() <= core::mem::size_of::<quatprop_t>());
-const _: () = assert!(core::mem::align_of::<KindAttitude>() <= core::mem::align_of::<quatprop_t>());
-
-/// `quatprop_baseline_init` with the run-time scheme and stabilizer.
-///
-/// # Safety
-/// As `quatprop_baseline_init`.
-#[no_mangle]
-pub unsafe extern "C" fn quatprop_baseline_kinds_init(s: *mut quatprop_t) -> u32 {
-    match (check(s), KindAttitude::new()) {
-        (Ok(()), Ok(a)) => {
-            // SAFETY: non-null and aligned (checked), writable per the contract; it fits (asserted).
-            unsafe { s.cast::<KindAttitude>().write(a) };
-            1
-        }
-        _ => 0,
-    }
-}
-
-/// `quatprop_baseline_on_fifo` with the run-time scheme and stabilizer.
-///
-/// # Safety
-/// As `quatprop_baseline_on_fifo`, the state set up by `quatprop_baseline_kinds_init`.
-#[no_mangle]
-pub unsafe extern "C" fn quatprop_baseline_kinds_on_fifo(
-    s: *mut quatprop_t,
-    counts: *const i16,
-    n: usize,
-) {
-    if check(s).is_err() || check(counts).is_err() {
-        return;
-    }
-    // SAFETY: checked non-null and aligned; initialized and exclusive, `3 * n` readable per the contract.
-    let (a, fifo) = unsafe {
-        (
-            &mut *s.cast::<KindAttitude>(),
-            core::slice::from_raw_parts(counts.cast::<[i16; 3]>(), n),
-        )
-    };
-    a.on_fifo(fifo);
-}
-
-/// `quatprop_baseline_attitude` with the run-time scheme and stabilizer.
-///
-/// # Safety
-/// As `quatprop_baseline_attitude`, the state set up by `quatprop_baseline_kinds_init`.
-#[no_mangle]
-pub unsafe extern "C" fn quatprop_baseline_kinds_attitude(
-    s: *const quatprop_t,
-    out: *mut quatprop_quat_t,
-    refused: *mut u32,
-) {
-    if check(s).is_err() || check(out).is_err() || check(refused).is_err() {
-        return;
-    }
-    // SAFETY: checked non-null and aligned; initialized, `out`/`refused` writable per the contract.
-    unsafe {
-        let (q, r) = (*s.cast::<KindAttitude>()).attitude();
-        out.write(quatprop_quat_t {
-            w: q.w,
-            x: q.x,
-            y: q.y,
-            z: q.z,
-        });
-        refused.write(r);
-    }
-}

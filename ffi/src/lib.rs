@@ -19,6 +19,10 @@
 //! linked with `--gc-sections` fails to link if any panic path is reachable from what it calls.
 //!
 //! Not thread-safe per state: one state must not be used from two contexts (e.g. main and an ISR) at once.
+//!
+//! Each exported function is written out, though many share their shape (read the arguments, forward to
+//! `with` or `burst`): cbindgen writes the header from these signatures and their docs as they stand in
+//! the source (it does not expand macros), and a C user reads each function's contract there.
 #![cfg_attr(not(test), no_std)]
 #![deny(unsafe_op_in_unsafe_fn)]
 #![warn(missing_docs, rust_2018_idioms)]

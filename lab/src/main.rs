@@ -9,7 +9,8 @@
 //! Layout, top to bottom (each file uses only the files after it; lab/README.md has the table): `cli.rs`
 //! (the command line), `studies/mod.rs` (the registry), `studies/` (one file per study), `outputs.rs` (the
 //! files a report writes, and their checks), `study.rs` (what a study is), `args.rs` (arguments the studies
-//! share) and `report.rs` (the report being written); what studies share: configurations and peers
+//! share), `report.rs` (the report being written) and `summary.rs` (its opening summary, from the run's
+//! CSV files); what studies share: configurations and peers
 //! (`configs.rs`, `peer_loops.rs`, `peers.rs`, `peer_types.rs`); scenes and their exact references
 //! (`scenes.rs`: the synthetic ones and the catalogue; `rigid_body.rs`, `recorded.rs`; `scene.rs`: what a
 //! scene is; `sample.rs`: a stream's sample); and the leaves: the scale (`scale.rs`), double-double time
@@ -38,6 +39,7 @@ mod scene;
 mod scenes;
 mod studies;
 mod study;
+mod summary;
 mod table;
 mod timing;
 mod unchecked;

@@ -1,15 +1,19 @@
 //! Every file a report of some studies writes (the registry's, `studies::ALL`, for the lab report): each
 //! study's CSV files (with their row types: read strictly, and the report's tables checked against them,
 //! for a report just written and for the committed docs/report) and its figures, and the report's own files
-//! (README.md, run_time.csv). [`check`] runs after every `report` (`Invocation::finish`).
+//! (README.md, run_time.csv, summary.csv). [`check`] runs after every `report` (`Invocation::finish`).
 
 use crate::study::{AnyStudy, CsvFile};
+use crate::summary::SummaryRow;
 use crate::table;
 use crate::timing::StudyTimeRow;
 use std::path::Path;
 
 /// The report's own CSV files (not a study's).
-const REPORT_CSV: &[CsvFile] = &[CsvFile::table::<StudyTimeRow>()];
+const REPORT_CSV: &[CsvFile] = &[
+    CsvFile::table::<StudyTimeRow>(),
+    CsvFile::table::<SummaryRow>(),
+];
 
 /// Every CSV file a report of `studies` can write, with its row type.
 pub fn csv_files<'a>(

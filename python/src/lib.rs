@@ -6,6 +6,9 @@
 //! builds, so it is compiled for each scheme × input model × accumulator, and for each precision and time
 //! base: the inner loop is the code a Rust user writes with those types (the stabilizer and the coning
 //! correction are the core's run-time enums, [`StabilizerKind`] and [`ConingKind`]).
+//!
+//! Methods come in pairs, one per precision (`update_f32` / `update_f64`, …): pyo3 exports concrete
+//! signatures only, so each is written out, and each forwards to one generic function.
 
 // As in the core: `!(t > last)` is written so that a NaN lands in the error branch.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]

@@ -253,3 +253,32 @@ impl Xorshift {
         (-2.0 * u.ln()).sqrt() * (2.0 * core::f64::consts::PI * v).cos()
     }
 }
+
+/// Gaussian noise for the estimator tests: xorshift64* from the raw state it is given (not mixed),
+/// uniforms at the centres of the 2⁻⁵³ bins (never 0, for the logarithm) and Box–Muller's first deviate.
+/// A stream of its own, kept bit for bit: the estimator tests' thresholds were set on it.
+pub struct GaussNoise(pub u64);
+
+impl GaussNoise {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    /// A standard normal deviate.
+    pub fn gauss(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    }
+
+    /// Three independent deviates of standard deviation `sigma`.
+    pub fn vec(&mut self, sigma: f64) -> Vec3<f64> {
+        Vec3::new(
+            self.gauss() * sigma,
+            self.gauss() * sigma,
+            self.gauss() * sigma,
+        )
+    }
+}
