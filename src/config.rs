@@ -40,7 +40,7 @@ use crate::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use crate::frontend::{FixedPeriod, TickClock};
 use crate::input::coning::ConingKind;
 use crate::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use crate::propagator::{checked_unit, correction_increment, Counters};
+use crate::propagator::{checked_unit, corrected, Counters, Frame};
 use crate::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
 };
@@ -414,14 +414,75 @@ impl<T: Copy> ConfiguredSample<T> for DeltaAngle<T> {
     }
 }
 
-/// One sample with its `dt` ([`Configured::push`]).
-struct Push<'a, X, T> {
-    sample: &'a X,
-    dt: T,
+/// The sample kind a propagator's input model takes ([`GyroSample`] or [`DeltaAngle`]): a
+/// [`ConfiguredSample`]'s samples as this kind, if they are.
+trait Kind<T>: Sized {
+    fn of<X: ConfiguredSample<T>>(samples: &[X]) -> Option<&[Self]>;
+    fn of_timed<X: ConfiguredSample<T>>(samples: &[(X, u32)]) -> Option<&[(Self, u32)]>;
 }
 
-impl<T: Real, X: ConfiguredSample<T>> Visit<T> for Push<'_, X, T> {
-    type Output = Result<(), Error>;
+impl<T: Copy> Kind<T> for GyroSample<T> {
+    #[inline(always)]
+    fn of<X: ConfiguredSample<T>>(samples: &[X]) -> Option<&[Self]> {
+        X::as_rates(samples)
+    }
+    #[inline(always)]
+    fn of_timed<X: ConfiguredSample<T>>(samples: &[(X, u32)]) -> Option<&[(Self, u32)]> {
+        X::as_timed_rates(samples)
+    }
+}
+
+impl<T: Copy> Kind<T> for DeltaAngle<T> {
+    #[inline(always)]
+    fn of<X: ConfiguredSample<T>>(samples: &[X]) -> Option<&[Self]> {
+        X::as_deltas(samples)
+    }
+    #[inline(always)]
+    fn of_timed<X: ConfiguredSample<T>>(samples: &[(X, u32)]) -> Option<&[(Self, u32)]> {
+        X::as_timed_deltas(samples)
+    }
+}
+
+/// An input model that takes one of the two sample kinds.
+trait Model<T: Real>: InputModel<T, Sample: Kind<T>> {}
+impl<T: Real, I: InputModel<T, Sample: Kind<T>>> Model<T> for I {}
+
+/// The static propagator a [`Configured`] runs (the stabilizer chosen at run time).
+type Run<T, S, I, A> = Propagator<T, S, I, StabilizerKind, A>;
+
+/// A burst's samples as the input model's kind, pushed by `push`; a non-empty burst of the other kind is
+/// refused at index 0.
+#[inline(always)]
+fn of_kind<Y>(
+    samples: Option<Y>,
+    empty: bool,
+    push: impl FnOnce(Y) -> Result<usize, Refused>,
+) -> Result<usize, Refused> {
+    match samples {
+        Some(s) => push(s),
+        None if empty => Ok(0),
+        None => Err(Refused {
+            index: 0,
+            error: Error::WrongSampleKind,
+        }),
+    }
+}
+
+/// What [`Configured`]'s own calls do on the static propagator, written once for both sample kinds
+/// (a [`Visit`] through [`Either`]).
+trait Op<T: Real> {
+    type Output;
+    fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Run<T, S, I, A>,
+    ) -> Self::Output;
+}
+
+/// An [`Op`] as a [`Visit`]: the same for the rate input models and for [`DeltaAngles`].
+struct Either<O>(O);
+
+impl<T: Real, O: Op<T>> Visit<T> for Either<O> {
+    type Output = O::Output;
     #[inline(always)]
     fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
     where
@@ -429,10 +490,7 @@ impl<T: Real, X: ConfiguredSample<T>> Visit<T> for Push<'_, X, T> {
         I: InputModel<T, Sample = GyroSample<T>>,
         A: Accumulator<T>,
     {
-        match X::as_rates(core::slice::from_ref(self.sample)) {
-            Some([s]) => p.push(*s, self.dt),
-            _ => Err(Error::WrongSampleKind),
-        }
+        self.0.run(p)
     }
     #[inline(always)]
     fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
@@ -441,7 +499,24 @@ impl<T: Real, X: ConfiguredSample<T>> Visit<T> for Push<'_, X, T> {
         I: InputModel<T, Sample = DeltaAngle<T>>,
         A: Accumulator<T>,
     {
-        match X::as_deltas(core::slice::from_ref(self.sample)) {
+        self.0.run(p)
+    }
+}
+
+/// One sample with its `dt` ([`Configured::push`]).
+struct Push<'a, X, T> {
+    sample: &'a X,
+    dt: T,
+}
+
+impl<T: Real, X: ConfiguredSample<T>> Op<T> for Push<'_, X, T> {
+    type Output = Result<(), Error>;
+    #[inline(always)]
+    fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Run<T, S, I, A>,
+    ) -> Self::Output {
+        match I::Sample::of(core::slice::from_ref(self.sample)) {
             Some([s]) => p.push(*s, self.dt),
             _ => Err(Error::WrongSampleKind),
         }
@@ -451,28 +526,14 @@ impl<T: Real, X: ConfiguredSample<T>> Visit<T> for Push<'_, X, T> {
 /// The first sample of a stream ([`Configured::start`]).
 struct Start<'a, X>(&'a X);
 
-impl<T: Real, X: ConfiguredSample<T>> Visit<T> for Start<'_, X> {
+impl<T: Real, X: ConfiguredSample<T>> Op<T> for Start<'_, X> {
     type Output = Result<(), Error>;
     #[inline(always)]
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
-        match X::as_rates(core::slice::from_ref(self.0)) {
-            Some([s]) => p.start(*s),
-            _ => Err(Error::WrongSampleKind),
-        }
-    }
-    #[inline(always)]
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
-        match X::as_deltas(core::slice::from_ref(self.0)) {
+    fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Run<T, S, I, A>,
+    ) -> Self::Output {
+        match I::Sample::of(core::slice::from_ref(self.0)) {
             Some([s]) => p.start(*s),
             _ => Err(Error::WrongSampleKind),
         }
@@ -485,38 +546,16 @@ struct Burst<'a, X, T> {
     period: &'a mut FixedPeriod<T>,
 }
 
-const WRONG_KIND: Refused = Refused {
-    index: 0,
-    error: Error::WrongSampleKind,
-};
-
-impl<T: Real, X: ConfiguredSample<T>> Visit<T> for Burst<'_, X, T> {
+impl<T: Real, X: ConfiguredSample<T>> Op<T> for Burst<'_, X, T> {
     type Output = Result<usize, Refused>;
     #[inline(always)]
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
-        match X::as_rates(self.samples) {
-            Some(s) => p.push_burst(s, self.period),
-            None if self.samples.is_empty() => Ok(0),
-            None => Err(WRONG_KIND),
-        }
-    }
-    #[inline(always)]
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
-        match X::as_deltas(self.samples) {
-            Some(s) => p.push_burst(s, self.period),
-            None if self.samples.is_empty() => Ok(0),
-            None => Err(WRONG_KIND),
-        }
+    fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Run<T, S, I, A>,
+    ) -> Self::Output {
+        of_kind(I::Sample::of(self.samples), self.samples.is_empty(), |s| {
+            p.push_burst(s, self.period)
+        })
     }
 }
 
@@ -526,36 +565,24 @@ struct TimedBurst<'a, X, T> {
     clock: &'a mut TickClock<T>,
 }
 
-impl<T: Real, X: ConfiguredSample<T>> Visit<T> for TimedBurst<'_, X, T> {
+impl<T: Real, X: ConfiguredSample<T>> Op<T> for TimedBurst<'_, X, T> {
     type Output = Result<usize, Refused>;
     #[inline(always)]
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
-        match X::as_timed_rates(self.samples) {
-            Some(s) => p.push_burst_timed(s, self.clock),
-            None if self.samples.is_empty() => Ok(0),
-            None => Err(WRONG_KIND),
-        }
-    }
-    #[inline(always)]
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
-        match X::as_timed_deltas(self.samples) {
-            Some(s) => p.push_burst_timed(s, self.clock),
-            None if self.samples.is_empty() => Ok(0),
-            None => Err(WRONG_KIND),
-        }
+    fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Run<T, S, I, A>,
+    ) -> Self::Output {
+        of_kind(
+            I::Sample::of_timed(self.samples),
+            self.samples.is_empty(),
+            |s| p.push_burst_timed(s, self.clock),
+        )
     }
 }
 
+// The methods below mirror `Propagator`'s one for one (the run-time API is the static one, documented
+// there): each forwards to the static propagator through `visit`, or to code written once in
+// propagator.rs (`corrected`, `checked_unit`); the repeated lines are the mirror's signatures and docs.
 impl<T: Real> Configured<T> {
     /// Runs `visitor` on the static propagator this one stands for, then keeps its new state. One `match`
     /// on the configuration per call.
@@ -684,10 +711,10 @@ impl<T: Real> Configured<T> {
     /// propagator is then unchanged.
     #[inline]
     pub fn push<X: ConfiguredSample<T>>(&mut self, sample: X, dt: T) -> Result<(), Error> {
-        self.visit(Push {
+        self.visit(Either(Push {
             sample: &sample,
             dt,
-        })
+        }))
     }
 
     /// [`Propagator::start`]: the first sample of a stream, which sets its time origin.
@@ -695,7 +722,7 @@ impl<T: Real> Configured<T> {
     /// # Errors
     /// [`Error::NonFiniteRate`]; [`Error::WrongSampleKind`]. The propagator is then unchanged.
     pub fn start<X: ConfiguredSample<T>>(&mut self, sample: X) -> Result<(), Error> {
-        self.visit(Start(&sample))
+        self.visit(Either(Start(&sample)))
     }
 
     /// [`Propagator::push_burst`]: a FIFO burst at a fixed period, bit for bit the same as one sample
@@ -709,7 +736,7 @@ impl<T: Real> Configured<T> {
         samples: &[X],
         period: &mut FixedPeriod<T>,
     ) -> Result<usize, Refused> {
-        self.visit(Burst { samples, period })
+        self.visit(Either(Burst { samples, period }))
     }
 
     /// [`Propagator::push_burst_timed`]: a FIFO burst with the sensor's timestamps.
@@ -722,7 +749,7 @@ impl<T: Real> Configured<T> {
         samples: &[(X, u32)],
         clock: &mut TickClock<T>,
     ) -> Result<usize, Refused> {
-        self.visit(TimedBurst { samples, clock })
+        self.visit(Either(TimedBurst { samples, clock }))
     }
 
     /// [`Propagator::restart_input`]: forgets the samples the input model keeps (after a gap).
@@ -755,38 +782,27 @@ impl<T: Real> Configured<T> {
     /// [`Propagator::rotate_body`]: `q ← q ⊗ exp_q(dtheta)`, a correction in the body frame (rad).
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`], [`Error::StepAngleBeyondStability`] (f32, beyond 16384 rad) or
-    /// [`Error::NonFiniteResult`]; the propagator is then unchanged.
+    /// As [`Propagator::rotate_body`]; the propagator is then unchanged.
     pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        let e = correction_increment(dtheta)?;
-        let d = self.q * e;
-        self.add_correction(d)
+        self.correct(dtheta, Frame::Body)
     }
 
-    /// [`Propagator::rotate_reference`]: `q ← exp_q(dtheta) ⊗ q`, a correction in the reference frame
-    /// (rad).
+    /// [`Propagator::rotate_reference`]: `q ← exp_q(dtheta) ⊗ q`, in the reference frame (rad).
     ///
     /// # Errors
-    /// [`Error::NonFiniteRate`], [`Error::StepAngleBeyondStability`] (f32, beyond 16384 rad) or
-    /// [`Error::NonFiniteResult`]; the propagator is then unchanged.
+    /// As [`Propagator::rotate_body`]; the propagator is then unchanged.
     pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        let e = correction_increment(dtheta)?;
-        let d = e * self.q;
-        self.add_correction(d)
+        self.correct(dtheta, Frame::Reference)
     }
 
-    /// A correction's increment added through the accumulator, as [`Propagator::rotate_body`] does.
-    fn add_correction(&mut self, d: Quat<T>) -> Result<(), Error> {
+    /// A correction through the accumulator, as [`Propagator::rotate_body`] makes it.
+    fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
         let mut acc = self.accumulator;
-        let q = match &mut acc {
-            AccumulatorState::Plain(a) => a.add(self.q, d),
-            AccumulatorState::Kahan(a) => a.add(self.q, d),
-            AccumulatorState::FloatFloat(a) => a.add(self.q, d),
-        };
-        if !q.is_finite() {
-            return Err(Error::NonFiniteResult);
-        }
-        self.q = q;
+        self.q = corrected(self.q, dtheta, frame, |q, d| match &mut acc {
+            AccumulatorState::Plain(a) => a.add(q, d),
+            AccumulatorState::Kahan(a) => a.add(q, d),
+            AccumulatorState::FloatFloat(a) => a.add(q, d),
+        })?;
         self.accumulator = acc;
         Ok(())
     }

@@ -144,21 +144,44 @@ impl core::error::Error for Refused {
     }
 }
 
-/// `exp_q(dtheta) − 1` for a correction by the rotation vector `dtheta` (rad), validated: written once
-/// for the static and the run-time propagator.
-pub(crate) fn correction_increment<T: Real>(dtheta: Vec3<T>) -> Result<Quat<T>, Error> {
+/// The frame a correction's rotation is given in.
+#[derive(Clone, Copy)]
+pub(crate) enum Frame {
+    /// `q ← q ⊗ exp_q(dtheta)`.
+    Body,
+    /// `q ← exp_q(dtheta) ⊗ q`.
+    Reference,
+}
+
+/// The attitude `q` corrected by the rotation vector `dtheta` (rad) in `frame`, its increment added
+/// through `add` (an accumulator's `add`, on a copy the caller keeps only with the result): written once
+/// for the static and the run-time propagator. The error leaves the caller unchanged.
+pub(crate) fn corrected<T: Real>(
+    q: Quat<T>,
+    dtheta: Vec3<T>,
+    frame: Frame,
+    add: impl FnOnce(Quat<T>, Quat<T>) -> Quat<T>,
+) -> Result<Quat<T>, Error> {
     if !dtheta.is_finite() {
         return Err(Error::NonFiniteRate);
     }
     let e = Quat::rotation_increment(dtheta);
-    if e.is_finite() {
-        Ok(e)
-    } else {
+    if !e.is_finite() {
         // f32 beyond the step path's sine; its square root: no f64 arithmetic linked for a refusal.
-        Err(Error::StepAngleBeyondStability {
+        return Err(Error::StepAngleBeyondStability {
             step_angle: dtheta.norm_squared().sqrt_step().to_f64(),
             limit: Quat::<T>::INCREMENT_ANGLE_LIMIT,
-        })
+        });
+    }
+    let d = match frame {
+        Frame::Body => q * e,
+        Frame::Reference => e * q,
+    };
+    let next = add(q, d);
+    if next.is_finite() {
+        Ok(next)
+    } else {
+        Err(Error::NonFiniteResult)
     }
 }
 
@@ -491,9 +514,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// f32 for a rotation beyond 16384 rad (the step path's sine; no libm sine is linked);
     /// [`Error::NonFiniteResult`] if the result is not finite. The propagator is then unchanged.
     pub fn rotate_body(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        let e = correction_increment(dtheta)?;
-        let d = self.q * e;
-        self.add_correction(d)
+        self.correct(dtheta, Frame::Body)
     }
 
     /// Rotates the attitude by the small rotation `dtheta` (rotation vector, rad) given in the
@@ -514,19 +535,13 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     /// # Errors
     /// As [`Propagator::rotate_body`].
     pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        let e = correction_increment(dtheta)?;
-        let d = e * self.q;
-        self.add_correction(d)
+        self.correct(dtheta, Frame::Reference)
     }
 
-    /// Adds a correction's increment `d` through the accumulator; commits only a finite result.
-    fn add_correction(&mut self, d: Quat<T>) -> Result<(), Error> {
+    /// A correction through the accumulator; commits only a finite result.
+    fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
         let mut acc = self.accumulator;
-        let q = acc.add(self.q, d);
-        if !q.is_finite() {
-            return Err(Error::NonFiniteResult);
-        }
-        self.q = q;
+        self.q = corrected(self.q, dtheta, frame, |q, d| acc.add(q, d))?;
         self.accumulator = acc;
         Ok(())
     }

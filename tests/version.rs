@@ -48,9 +48,12 @@ fn quoted(text: &str) -> Option<String> {
     Some(text[start..start + len].to_string())
 }
 
-/// The newest section's version in CHANGELOG.md: the first `## [x.y.z]` heading.
+/// The newest section's version in CHANGELOG.md: the first `## [x.y.z]` heading (an `## [Unreleased]`
+/// section above it holds what has come since).
 fn changelog_version(text: &str) -> Option<String> {
-    let line = text.lines().find(|l| l.starts_with("## ["))?;
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("## [") && !l.starts_with("## [Unreleased]"))?;
     let rest = &line[4..];
     Some(rest[..rest.find(']')?].to_string())
 }
@@ -177,6 +180,8 @@ fn the_readers_read() {
     );
     assert_eq!(toml_value(toml, "[project]", "version"), None);
     let log = "# Changelog\n\n## [0.3.0] — unreleased\n\n## [0.2.0] — unreleased\n";
+    assert_eq!(changelog_version(log).as_deref(), Some("0.3.0"));
+    let log = "# Changelog\n\n## [Unreleased]\n\n## [0.3.0] — 2026-11-28\n";
     assert_eq!(changelog_version(log).as_deref(), Some("0.3.0"));
     assert_eq!(quoted("x = \"0.3.0\" # y").as_deref(), Some("0.3.0"));
 }
