@@ -10,7 +10,7 @@ use crate::timing::StudyTimeRow;
 use std::path::Path;
 
 /// The report's own CSV files (not a study's).
-const REPORT_CSV: &[CsvFile] = &[
+pub const REPORT_CSV: &[CsvFile] = &[
     CsvFile::table::<StudyTimeRow>(),
     CsvFile::table::<SummaryRow>(),
 ];
