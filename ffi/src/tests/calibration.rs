@@ -11,6 +11,7 @@ use super::super::calibration::{
     quatprop_calibration_estimator_update, Block, MAGIC, PAYLOAD, SUM, TAG,
 };
 use super::super::*;
+use super::check::{bit_syndromes, flip, rank, Rng};
 use quatprop::frontend::CalibrationEstimator;
 use quatprop::Vec3;
 use std::collections::HashSet;
@@ -577,26 +578,6 @@ fn refusals_have_their_codes_and_change_nothing() {
 // ---------------------------------------------------------------------------------------------------------
 // The block's check.
 
-/// SplitMix64 (as `check.rs`).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
-
-fn flip(b: &mut Block, bit: usize) {
-    b[bit / 8] ^= 1 << (bit % 8);
-}
-
 /// What a call must return for a changed block.
 fn expected(b: &Block) -> quatprop_status_t {
     if word(b, TAG / 4) != MAGIC {
@@ -645,26 +626,7 @@ fn a_block_round_trips_and_any_changed_byte_is_caught() {
 #[test]
 fn the_crc_detects_every_error_of_up_to_3_bits_and_every_32_bit_burst() {
     let (_, b) = blocks()[2];
-    let syndrome = |c: &Block| crc32c(&c[..SUM]) ^ stored_sum(c);
-    assert_eq!(syndrome(&b), 0);
-    let s: Vec<u32> = (0..BITS)
-        .map(|i| {
-            let mut c = b;
-            flip(&mut c, i);
-            syndrome(&c)
-        })
-        .collect();
-    let mut rng = Rng(6);
-    for _ in 0..5_000 {
-        let mut c = b;
-        let mut want = 0;
-        for _ in 0..1 + rng.below(40) {
-            let i = rng.below(BITS);
-            flip(&mut c, i);
-            want ^= s[i];
-        }
-        assert_eq!(syndrome(&c), want, "the code is linear");
-    }
+    let s = bit_syndromes(&b, 6, 5_000);
     let singles: HashSet<u32> = s.iter().copied().collect();
     assert!(!singles.contains(&0));
     assert_eq!(singles.len(), BITS);
@@ -679,11 +641,7 @@ fn the_crc_detects_every_error_of_up_to_3_bits_and_every_32_bit_burst() {
         }
     }
     for start in 0..=BITS - 32 {
-        assert_eq!(
-            super::check::rank(&s[start..start + 32]),
-            32,
-            "burst from bit {start}"
-        );
+        assert_eq!(rank(&s[start..start + 32]), 32, "burst from bit {start}");
     }
     println!(
         "calibration estimator block: {BITS} single bits, {pairs} pairs and every third bit, {} bursts of 32 bits: none passes the CRC",

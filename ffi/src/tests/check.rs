@@ -10,8 +10,9 @@ use super::super::*;
 use super::largest;
 use std::collections::HashSet;
 
-/// SplitMix64: the random damage is the same on every run.
-struct Rng(u64);
+/// SplitMix64: the random damage is the same on every run (the calibration estimator's block's tests
+/// draw theirs from it too).
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
     fn next(&mut self) -> u64 {
@@ -21,7 +22,7 @@ impl Rng {
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
     }
-    fn below(&mut self, n: usize) -> usize {
+    pub(super) fn below(&mut self, n: usize) -> usize {
         (self.next() % n as u64) as usize
     }
     fn byte(&mut self) -> u8 {
@@ -31,8 +32,37 @@ impl Rng {
 
 const BITS: usize = 8 * QUATPROP_STATE_SIZE;
 
-fn flip(b: &mut Block, bit: usize) {
+/// Bit `bit` of a block of any size flipped (bit `8k + i`: byte k's bit i, the order the reflected CRC
+/// reads).
+pub(super) fn flip<const N: usize>(b: &mut [u8; N], bit: usize) {
     b[bit / 8] ^= 1 << (bit % 8);
+}
+
+/// The syndrome of each single flipped bit of the sealed block `b` (of any size: "CRC of the data xor the
+/// stored CRC", zero for `b` itself), after checking on `errors` random errors of 1 to 40 bits (from
+/// `seed`) that the code is linear: a random error's syndrome is the xor of its bits'.
+pub(super) fn bit_syndromes<const N: usize>(b: &[u8; N], seed: u64, errors: usize) -> Vec<u32> {
+    let syndrome = |c: &[u8; N]| crc32c(&c[..N - 4]) ^ stored_sum(c);
+    assert_eq!(syndrome(b), 0);
+    let s: Vec<u32> = (0..8 * N)
+        .map(|i| {
+            let mut c = *b;
+            flip(&mut c, i);
+            syndrome(&c)
+        })
+        .collect();
+    let mut rng = Rng(seed);
+    for _ in 0..errors {
+        let mut c = *b;
+        let mut want = 0;
+        for _ in 0..1 + rng.below(40) {
+            let i = rng.below(8 * N);
+            flip(&mut c, i);
+            want ^= s[i];
+        }
+        assert_eq!(syndrome(&c), want, "the code is linear");
+    }
+    s
 }
 
 /// The block behind a C state.
@@ -244,28 +274,7 @@ fn every_bit_and_every_pair_of_bits_is_refused() {
 /// 4-bit errors that pass are counted (pairs of bit pairs with one syndrome).
 #[test]
 fn the_crc_detects_every_error_of_up_to_3_bits_and_every_32_bit_burst() {
-    let b = encode(&largest()).unwrap();
-    let syndrome = |c: &Block| crc32c(&c[..SUM]) ^ stored_sum(c);
-    assert_eq!(syndrome(&b), 0);
-    let s: Vec<u32> = (0..BITS)
-        .map(|i| {
-            let mut c = b;
-            flip(&mut c, i);
-            syndrome(&c)
-        })
-        .collect();
-    // Linear: a random error's syndrome is the xor of its bits'.
-    let mut rng = Rng(3);
-    for _ in 0..20_000 {
-        let mut c = b;
-        let mut want = 0;
-        for _ in 0..1 + rng.below(40) {
-            let i = rng.below(BITS);
-            flip(&mut c, i);
-            want ^= s[i];
-        }
-        assert_eq!(syndrome(&c), want);
-    }
+    let s = bit_syndromes(&encode(&largest()).unwrap(), 3, 20_000);
     // 1 and 2 bits: every syndrome non-zero and distinct.
     let singles: HashSet<u32> = s.iter().copied().collect();
     assert!(!singles.contains(&0));
