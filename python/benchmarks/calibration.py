@@ -219,18 +219,10 @@ def envelope(trials, settings):
              for t in trials}
     pairs = {}
     for t in trials:
-        s = calibrated_stream(t, settings[t.name]) if settings[t.name] is not None else None
-        starts = bm.start_points(t.movement, t.fs)
-        if s is None:
+        if settings[t.name] is None:
             q, starts, var = heldout.envelope_run(t, heldout.DRIFTS[0], 0.0, False)
         else:
-            cuts = [0, t.first_movement, *[int(x) + 1 for x in starts if x + 1 > t.first_movement], len(t.gyr)]
-            q = np.empty((len(t.gyr), 4))
-            var = {}
-            for a, b in zip(cuts[:-1], cuts[1:]):
-                if b > a:
-                    q[a:b] = s.update(t.gyr[a:b], acc=t.acc[a:b])
-                var[b - 1] = np.array(s.bias_variance)
+            q, starts, var = heldout.stream_at_start_points(t, calibrated_stream(t, settings[t.name]))
         pairs[t.name] = heldout.envelope_pairs(t, q, starts, var, white[t.name])
     names = [t.name for t in trials]
     env = crossval.leave_one_out_by(

@@ -123,6 +123,13 @@ def envelope_run(t: bm.Trial, drift: float, delay: float, motion: bool):
     est = quatprop.BiasEstimator(window=1.0, gate=GATE, drift=drift, motion=motion)
     st = quatprop.Stream(dt=t.dt, scheme="expmap", input="history", precision="f32", bias=est,
                          group_delay=delay * t.dt)
+    return stream_at_start_points(t, st)
+
+
+def stream_at_start_points(t: bm.Trial, st: quatprop.Stream):
+    """`st` fed the trial (gyro and accelerometer) in pieces cut at the end of the first rest and after
+    every start point: the attitudes (N, 4), the start points, and the bias estimator's variance
+    (rad/s)² at the end of each piece (by its last sample's index)."""
     starts = bm.start_points(t.movement, t.fs)
     cuts = [0, t.first_movement, *[int(s) + 1 for s in starts if s + 1 > t.first_movement], len(t.gyr)]
     q = np.empty((len(t.gyr), 4))
