@@ -337,16 +337,7 @@ fn octaves_for(samples: u64) -> u32 {
 pub fn markov_avar(x: f64, m: u64) -> f64 {
     let mf = m as f64;
     if m <= 4096 || (x * mf < 1e-3 && m <= 1 << 16) {
-        let mut s = 0.0;
-        for d in 1..2 * m {
-            let c = if d <= m {
-                2.0 * mf - 3.0 * d as f64
-            } else {
-                -(2.0 * mf - d as f64)
-            };
-            s += c * (-x * d as f64).exp_m1();
-        }
-        s / (mf * mf)
+        markov_avar_sum(x, m)
     } else {
         let a = (-x).exp();
         let one_minus_a = -(-x).exp_m1();
@@ -356,6 +347,21 @@ pub fn markov_avar(x: f64, m: u64) -> f64 {
                 / (one_minus_a * one_minus_a))
             / (mf * mf)
     }
+}
+
+/// [`markov_avar`] as the sum over the lags, `Σ_{d=1}^{2m−1} C(d) (a^d − 1) / m²`.
+fn markov_avar_sum(x: f64, m: u64) -> f64 {
+    let mf = m as f64;
+    let mut s = 0.0;
+    for d in 1..2 * m {
+        let c = if d <= m {
+            2.0 * mf - 3.0 * d as f64
+        } else {
+            -(2.0 * mf - d as f64)
+        };
+        s += c * (-x * d as f64).exp_m1();
+    }
+    s / (mf * mf)
 }
 
 /// The generator's flicker band alone: its expected Allan variance over the floor `(2 ln 2/π) B²` at `m`
@@ -1665,17 +1671,7 @@ mod tests {
     #[test]
     fn markov_allan_variance_is_exact() {
         for (x, m) in [(0.3, 5000_u64), (1.0 / 64.0, 8192), (1e-3, 70_000)] {
-            let mf = m as f64;
-            let mut s = 0.0;
-            for d in 1..2 * m {
-                let c = if d <= m {
-                    2.0 * mf - 3.0 * d as f64
-                } else {
-                    -(2.0 * mf - d as f64)
-                };
-                s += c * (-x * d as f64).exp_m1();
-            }
-            let sum = s / (mf * mf);
+            let sum = markov_avar_sum(x, m);
             let closed = markov_avar(x, m);
             assert!((closed / sum - 1.0).abs() < 1e-9, "{x} {m}: {closed} {sum}");
         }
