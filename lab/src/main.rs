@@ -15,7 +15,8 @@
 //! (`scenes.rs`: the synthetic ones and the catalogue; `rigid_body.rs`, `recorded.rs`; `scene.rs`: what a
 //! scene is; `sample.rs`: a stream's sample); and the leaves: the scale (`scale.rs`), double-double time
 //! (`dd.rs`), unchecked steps (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`,
-//! `timing.rs`), CSV and tables (`table.rs`) and plots (`plot.rs`).
+//! `timing.rs`), the firmware bench's counts (`m4f_bench.rs`), CSV and tables (`table.rs`) and plots
+//! (`plot.rs`).
 
 mod args;
 mod cli;
@@ -23,6 +24,7 @@ mod configs;
 mod dd;
 #[cfg(test)]
 mod example_study;
+mod m4f_bench;
 mod outputs;
 mod peer_loops;
 mod peer_types;

@@ -207,8 +207,7 @@ pub fn finish(ctx: &mut Ctx, command: &str) -> Vec<String> {
     );
     // The opening summary, when this run wrote the grid it is computed from.
     let summary = if ctx.files.iter().any(|f| f == summary::GRID_FILE) {
-        let bench = Path::new(env!("CARGO_MANIFEST_DIR")).join("../firmware/bench-m4f.csv");
-        match summary::summary(&out, &bench) {
+        match summary::summary(&out, &crate::m4f_bench::path()) {
             Ok((text, rows)) => format!("{text}{}", ctx.table(&rows)),
             Err(e) => {
                 ctx.failures.push(format!("summary: {e}"));

@@ -10,6 +10,7 @@
 //! `e(H)·T/H`. Of the configurations that pass at a rate, the one with the fewest M4F instructions per
 //! second is named.
 
+use crate::m4f_bench;
 use crate::table::{self, Csv, Table};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -58,19 +59,12 @@ struct Measured {
 
 /// The M4F bench's f32 rows as grid labels (`quatprop <scheme> <input> + <stabilizer>`).
 fn bench(path: &Path) -> Result<Vec<Measured>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(text
-        .lines()
-        .skip(1)
-        .filter_map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            match f.as_slice() {
-                ["f32", scheme, stab, input, n] => Some(Measured {
-                    label: format!("quatprop {scheme} {input} + {stab}"),
-                    instructions_per_step: n.parse().ok()?,
-                }),
-                _ => None,
-            }
+    Ok(m4f_bench::read(path)?
+        .into_iter()
+        .filter(|r| r.0 == "f32")
+        .map(|(_, scheme, stab, input, n)| Measured {
+            label: format!("quatprop {scheme} {input} + {stab}"),
+            instructions_per_step: n,
         })
         .collect())
 }

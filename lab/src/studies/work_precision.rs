@@ -7,6 +7,7 @@
 //! (`firmware/bench-m4f.csv`, written by `python3 firmware/figures.py`). The f32 arithmetic is bit-identical
 //! on the M4F and the host (tests/firmware_snapshot.rs), so the host's error is the target's error.
 
+use crate::m4f_bench::{self, BenchRow};
 use crate::args::Sweep;
 use crate::configs::{
     error_kind, full_grid, scheme_name, scheme_set, Acc, Config, Input, LabReal, Peer, Precision, Stab,
@@ -1283,29 +1284,9 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     )
 }
 
-/// One row of `firmware/bench-m4f.csv`: precision, scheme, stabilizer, input, instructions per step.
-pub type BenchRow = (String, String, String, String, f64);
-
-/// M4F instructions per step from `firmware/bench-m4f.csv` (precision, scheme, stabilizer, input →
-/// instructions), if the firmware figures were generated.
+/// M4F instructions per step from `firmware/bench-m4f.csv`, if the firmware figures were generated.
 pub fn m4f_bench() -> Option<Vec<BenchRow>> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../firmware/bench-m4f.csv");
-    let text = std::fs::read_to_string(path).ok()?;
-    Some(
-        text.lines()
-            .skip(1)
-            .filter_map(|l| {
-                let f: Vec<&str> = l.split(',').collect();
-                Some((
-                    f.first()?.to_string(),
-                    f.get(1)?.to_string(),
-                    f.get(2)?.to_string(),
-                    f.get(3)?.to_string(),
-                    f.get(4)?.parse().ok()?,
-                ))
-            })
-            .collect(),
-    )
+    m4f_bench::read(&m4f_bench::path()).ok()
 }
 
 /// The full grid on one scene in f32 and f64 (CSV), and in f32 the error against Cortex-M4F instructions per
