@@ -2,7 +2,9 @@
 //! are known (white noise `N`, bias instability `B`, rate or acceleration random walk `K`), streamed in f64
 //! through the core's `noise::AllanVariance` and fitted with `NoiseFit::pooled_from(&avar, 16·period)`,
 //! for several record lengths and seeds: how close the fit comes to the truth, how often it identifies each
-//! term, how often its own 2-standard-error interval holds the truth, and how that grows with the record.
+//! term, how often its own 2-standard-error interval holds the truth, and how that grows with the record;
+//! beside each, the information limit (the Cramér–Rao bound any unbiased estimate meets from a record that
+//! long), and long records at 1 Hz (30–1000 × τ(B = K)) for the random walk, which needs them.
 //!
 //! The generator is the one of `tests/noise.rs`: white noise of density `N`; flicker noise of bias
 //! instability `B` as a sum of Gauss–Markov processes one octave apart (each of variance `B² ln 2 / π`,
@@ -59,6 +61,7 @@ impl Study for Noise {
         CsvFile::table::<BandRow>(),
         CsvFile::table::<ErrorRow>(),
         CsvFile::table::<MinTauRow>(),
+        CsvFile::table::<LongRow>(),
         CsvFile::data::<FitRow>(),
         CsvFile::data::<AdevRow>(),
     ];
@@ -100,7 +103,12 @@ impl Study for Noise {
             ctx.page("noise.md");
         }
         let page = args.page;
-        ctx.section("noise", |c| study(c, seeds, &hours, page));
+        let ratios = ctx.scale.pick(
+            vec![3.0, 10.0],
+            vec![30.0, 100.0, 300.0, 1000.0],
+            vec![30.0, 100.0, 300.0, 1000.0],
+        );
+        ctx.section("noise", |c| study(c, seeds, &hours, &ratios, page));
     }
 }
 
@@ -115,6 +123,9 @@ const MIN_TAU_PERIODS: f64 = 16.0;
 /// The generator's flicker band passes the longest record by this many octaves (its Allan variance is
 /// within 1 % of the floor up to 2^(octaves − 7) periods).
 const HEADROOM_OCTAVES: u32 = 7;
+/// The long records' sample rate (Hz): the random walk shows at clusters of minutes to days, where a 1 Hz
+/// sensor's Allan variance is a 100 Hz one's with the same densities (from 16 s on, where the fit starts).
+const LONG_RATE_HZ: f64 = 1.0;
 /// The interval whose coverage of the truth is counted: the fit's own `Term::interval(2.0)`.
 const INTERVAL_SE: f64 = 2.0;
 /// The issue's claim: within 10 % of the truth.
@@ -384,6 +395,66 @@ fn generator_avar(truth: [f64; 3], period: f64, octaves: u32, m: u64) -> f64 {
 }
 
 // ---------------------------------------------------------------------------------------------------------
+// The information limit.
+
+/// The smallest relative standard deviation an unbiased estimate of each density `N`, `B`, `K` can have
+/// from `samples` samples of a 3-axis sensor at rest: the Cramér–Rao bound with Whittle's approximation of
+/// the likelihood. The rate's two-sided spectrum is `S(f) = N² + B²/(2π f) + K²/(2π f)²` (IEEE Std 952's
+/// terms, the ones whose Allan variances the fit's model sums), the periodogram's ordinates at the record's
+/// frequencies `f_j = j / T`, `j = 1 … n/2`, independent and exponential with mean `S(f_j)`; so the Fisher
+/// information of the log-coefficients `ln (N², B², K²)` is `3 Σ_j g gᵀ` over the three axes, with
+/// `gᵢ = cᵢ ∂ᵢS / S` each term's share of the spectrum at `f_j`. A density's relative deviation is half its
+/// coefficient's. Terms whose density is 0 are left out (known to be absent). The random walk is not
+/// stationary; taking its spectrum at the record's own frequencies is the usual approximation, and the
+/// fit's own scatter (the study's tables) can be compared with it.
+fn information_limit(truth: [f64; 3], period: f64, samples: u64) -> [f64; 3] {
+    let active: Vec<usize> = (0..3).filter(|&i| truth[i] > 0.0).collect();
+    let record = samples as f64 * period;
+    let two_pi_t = 2.0 * core::f64::consts::PI / record;
+    let c = truth.map(|d| d * d);
+    let mut info = vec![vec![0.0; active.len()]; active.len()];
+    for j in 1..=samples / 2 {
+        let w = two_pi_t * j as f64;
+        let terms = [c[0], c[1] / w, c[2] / (w * w)];
+        let s: f64 = terms.iter().sum();
+        for (r, &a) in active.iter().enumerate() {
+            for (q, &b) in active.iter().enumerate() {
+                info[r][q] += 3.0 * terms[a] * terms[b] / (s * s);
+            }
+        }
+    }
+    let cov = inverse(info);
+    let mut limit = [f64::NAN; 3];
+    for (r, &a) in active.iter().enumerate() {
+        limit[a] = 0.5 * cov[r][r].sqrt();
+    }
+    limit
+}
+
+/// The inverse of a small symmetric positive definite matrix (Gauss–Jordan; `NaN`s where it is singular).
+fn inverse(mut a: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    let n = a.len();
+    let mut inv: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| f64::from(u8::from(i == j))).collect())
+        .collect();
+    for col in 0..n {
+        let pivot = a[col][col];
+        for j in 0..n {
+            a[col][j] /= pivot;
+            inv[col][j] /= pivot;
+        }
+        for row in (0..n).filter(|&r| r != col) {
+            let f = a[row][col];
+            for j in 0..n {
+                a[row][j] -= f * a[col][j];
+                inv[row][j] -= f * inv[col][j];
+            }
+        }
+    }
+    inv
+}
+
+// ---------------------------------------------------------------------------------------------------------
 // One recording.
 
 /// One fit: the terms (`None`: too few clusters to fit), the points and the misfit.
@@ -418,7 +489,13 @@ struct Fits {
 
 /// One seed of one class: a recording as long as the longest record, fitted at each record length (its
 /// first samples); and the clusters at the longest.
-fn record(class: &Class, seed: u32, samples: &[u64]) -> (Vec<Fits>, Vec<Cluster<f64>>) {
+/// `experiment` tells the experiments' streams apart (0 for the study's records, 1 for the long ones).
+fn record(
+    class: &Class,
+    experiment: u64,
+    seed: u32,
+    samples: &[u64],
+) -> (Vec<Fits>, Vec<Cluster<f64>>) {
     let period = class.period();
     let longest = *samples.last().expect("a record length");
     let class_index = CLASSES.iter().position(|c| c.key == class.key).unwrap_or(0) as u64;
@@ -427,7 +504,7 @@ fn record(class: &Class, seed: u32, samples: &[u64]) -> (Vec<Fits>, Vec<Cluster<
         class.truth(),
         class.offset,
         octaves_for(longest),
-        0x5EED_0000_0000 ^ (class_index << 32) ^ u64::from(seed),
+        0x5EED_0000_0000 ^ (experiment << 40) ^ (class_index << 32) ^ u64::from(seed),
     );
     let mut avar = AllanVariance::<f64, 32>::new(period).expect("a positive period");
     let mut fits = Vec::with_capacity(samples.len());
@@ -586,9 +663,58 @@ pub struct ErrorRow {
     pub random_walk_worst: f64,
     pub random_walk_identified: u32,
     pub random_walk_covered: u32,
+    /// Per term: the rms relative error over the seeds that identified it, and the information limit on
+    /// the relative standard deviation at this length ([`information_limit`]).
+    pub white_rms: f64,
+    pub white_limit: f64,
+    pub instability_rms: f64,
+    pub instability_limit: f64,
+    pub random_walk_rms: f64,
+    pub random_walk_limit: f64,
+}
+
+/// One term over the seeds: the median, worst and rms |relative error| of the seeds that identified it
+/// (`NaN` when none did), how many identified it, and how many ±2 se intervals held the truth.
+#[derive(Clone, Copy, Debug)]
+struct Summary {
+    median: f64,
+    worst: f64,
+    rms: f64,
+    identified: u32,
+    covered: u32,
+}
+
+impl Summary {
+    /// From each seed's (relative error, identified, covered).
+    fn of(judged: impl Iterator<Item = (f64, bool, bool)>) -> Self {
+        let judged: Vec<(f64, bool, bool)> = judged.collect();
+        let mut errors: Vec<f64> = judged.iter().filter(|t| t.1).map(|t| t.0.abs()).collect();
+        let worst = errors.iter().copied().fold(f64::NAN, f64::max);
+        let rms = if errors.is_empty() {
+            f64::NAN
+        } else {
+            (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt()
+        };
+        Self {
+            median: median(&mut errors),
+            worst,
+            rms,
+            identified: errors.len() as u32,
+            covered: judged.iter().filter(|t| t.2).count() as u32,
+        }
+    }
 }
 
 impl ErrorRow {
+    /// Per term: the information limit.
+    fn limits(&self) -> [f64; 3] {
+        [
+            self.white_limit,
+            self.instability_limit,
+            self.random_walk_limit,
+        ]
+    }
+
     /// Per term: (median, worst, identified, covered).
     fn terms(&self) -> [(f64, f64, u32, u32); 3] {
         [
@@ -622,8 +748,19 @@ impl Csv for ErrorRow {
 fn length(hours: f64) -> String {
     if hours < 1.0 {
         format!("{} min", (hours * 60.0 * 100.0).round() / 100.0)
-    } else {
+    } else if hours == hours.round() {
         format!("{hours} h")
+    } else {
+        format!("{hours:.1} h")
+    }
+}
+
+/// A percentage with two significant figures below 1 % (the information limits of the white noise).
+fn pct_fine(v: f64) -> String {
+    if v.is_finite() && v < 0.01 {
+        format!("{:.2}", 100.0 * v)
+    } else {
+        pct(v)
     }
 }
 
@@ -651,8 +788,9 @@ impl Table for ErrorRow {
             }
             let of: Vec<&ErrorRow> = rows.iter().filter(|r| r.sensor == *s).collect();
             t += &format!(
-                "**{s}** ({} seeds; |relative error| in % over the seeds that identified the term; \
-                 identified / truth inside the fit's ±2 se)\n\n",
+                "**{s}** ({} seeds; |relative error| in % over the seeds that identified the term; the \
+                 information limit: the smallest relative standard deviation any unbiased estimate can \
+                 have from a record this long; identified / truth inside the fit's ±2 se)\n\n",
                 of[0].seeds
             );
             let mut cols = vec!["record".to_string()];
@@ -661,6 +799,7 @@ impl Table for ErrorRow {
                 cols.extend([
                     format!("{s} median"),
                     format!("{s} worst"),
+                    format!("{s} limit (1σ)"),
                     format!("{s} id. / in ±2 se"),
                 ]);
             }
@@ -668,11 +807,82 @@ impl Table for ErrorRow {
             t += &table::header(&refs);
             for r in of {
                 t += &format!("| {} |", length(r.hours));
-                for (median, worst, id, cov) in r.terms() {
-                    t += &format!(" {} | {} | {id} / {cov} |", pct(median), pct(worst));
+                for ((median, worst, id, cov), limit) in r.terms().into_iter().zip(r.limits()) {
+                    t += &format!(
+                        " {} | {} | {} | {id} / {cov} |",
+                        pct(median),
+                        pct(worst),
+                        pct_fine(limit)
+                    );
                 }
                 t += "\n";
             }
+        }
+        t
+    }
+}
+
+/// A long record (the random walk's experiment), over the seeds: B's and K's median and worst |relative
+/// error| over the seeds that identified them, K's rms error, its information limit (1σ) and how many ±2 se
+/// intervals held the truth.
+#[derive(Serialize, Deserialize, Debug, Clone)]
+pub struct LongRow {
+    pub sensor: String,
+    pub rate_hz: f64,
+    /// The record over τ(B = K).
+    pub ratio: f64,
+    pub hours: f64,
+    pub seeds: u32,
+    pub instability_median: f64,
+    pub instability_worst: f64,
+    pub instability_identified: u32,
+    pub random_walk_median: f64,
+    pub random_walk_worst: f64,
+    pub random_walk_rms: f64,
+    pub random_walk_identified: u32,
+    pub random_walk_covered: u32,
+    pub random_walk_limit: f64,
+}
+
+impl LongRow {
+    /// Every seed identified K within the issue's 10 %.
+    fn k_within_claim(&self) -> bool {
+        self.random_walk_identified == self.seeds && self.random_walk_worst <= CLAIM
+    }
+}
+
+impl Csv for LongRow {
+    const FILE: &'static str = "noise_long.csv";
+}
+
+impl Table for LongRow {
+    fn render(rows: &[Self]) -> String {
+        let mut t = table::header(&[
+            "sensor",
+            "record / τ(B = K)",
+            "record",
+            "B median / worst (%)",
+            "K median / worst (%)",
+            "K rms (%)",
+            "K limit (1σ, %)",
+            "K identified / in ±2 se",
+        ]);
+        for r in rows {
+            t += &format!(
+                "| {} | {} | {} | {} / {} | {} / {} | {} | {} | {} / {} of {} |\n",
+                r.sensor,
+                r.ratio,
+                length(r.hours),
+                pct(r.instability_median),
+                pct(r.instability_worst),
+                pct(r.random_walk_median),
+                pct(r.random_walk_worst),
+                pct(r.random_walk_rms),
+                pct(r.random_walk_limit),
+                r.random_walk_identified,
+                r.random_walk_covered,
+                r.seeds
+            );
         }
         t
     }
@@ -844,7 +1054,7 @@ fn shown<R: Table>(ctx: &mut Ctx, rows: &[R], page: bool) -> String {
     }
 }
 
-fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
+fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], ratios: &[f64], page: bool) -> String {
     let bar = ctx.progress();
     let samples_of = |c: &Class| -> Vec<u64> {
         hours
@@ -860,11 +1070,67 @@ fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
     let results: Vec<(Vec<Fits>, Vec<Cluster<f64>>)> = jobs
         .par_iter()
         .map(|&(c, s)| {
-            let r = record(&CLASSES[c], s, &samples_of(&CLASSES[c]));
+            let r = record(&CLASSES[c], 0, s, &samples_of(&CLASSES[c]));
             bar.inc(1);
             r
         })
         .collect();
+
+    // The random walk's long records: each sensor at 1 Hz, records `ratios` × τ(B = K) long.
+    let long_class = |c: &Class| Class {
+        rate_hz: LONG_RATE_HZ,
+        ..*c
+    };
+    let long_samples = |c: &Class| -> Vec<u64> {
+        let tau = crossovers(c.truth()).1;
+        ratios
+            .iter()
+            .map(|r| ((r * tau * c.rate_hz).round() as u64).max(2))
+            .collect()
+    };
+    let long_results: Vec<Vec<Fits>> = jobs
+        .par_iter()
+        .map(|&(c, s)| {
+            let class = long_class(&CLASSES[c]);
+            let r = record(&class, 1, s, &long_samples(&class)).0;
+            bar.inc(1);
+            r
+        })
+        .collect();
+    let mut long_rows = Vec::new();
+    for (c, class) in CLASSES.iter().enumerate() {
+        let class = long_class(class);
+        let truth = class.truth();
+        let samples = long_samples(&class);
+        for (i, (&ratio, &n)) in ratios.iter().zip(&samples).enumerate() {
+            let of = jobs
+                .iter()
+                .zip(&long_results)
+                .filter(|((jc, _), _)| *jc == c)
+                .map(|(_, fits)| fits[i].from16);
+            let judged: Vec<[(f64, bool, bool); 3]> = of
+                .map(|f| [0, 1, 2].map(|t| judge(f.terms.as_ref().map(|x| &x[t]), truth[t])))
+                .collect();
+            let [_, b, k] = [0, 1, 2].map(|t| Summary::of(judged.iter().map(|j| j[t])));
+            let limit = information_limit(truth, class.period(), n);
+            long_rows.push(LongRow {
+                sensor: class.name.into(),
+                rate_hz: class.rate_hz,
+                ratio,
+                hours: n as f64 * class.period() / 3600.0,
+                seeds,
+                instability_median: b.median,
+                instability_worst: b.worst,
+                instability_identified: b.identified,
+                random_walk_median: k.median,
+                random_walk_worst: k.worst,
+                random_walk_rms: k.rms,
+                random_walk_identified: k.identified,
+                random_walk_covered: k.covered,
+                random_walk_limit: limit[2],
+            });
+        }
+    }
 
     // Every fit, judged.
     let mut fit_rows = Vec::new();
@@ -936,35 +1202,34 @@ fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
                 .iter()
                 .filter(|r| r.sensor == class.key && r.hours == h)
                 .collect();
-            let stats = |i: usize| {
-                let mut errors: Vec<f64> = of
-                    .iter()
-                    .map(|r| term_of(r, i))
-                    .filter(|t| t.1)
-                    .map(|t| t.0.abs())
-                    .collect();
-                let worst = errors.iter().copied().fold(f64::NAN, f64::max);
-                let identified = errors.len() as u32;
-                let covered = of.iter().filter(|r| term_of(r, i).2).count() as u32;
-                (median(&mut errors), worst, identified, covered)
-            };
-            let [w, b, k] = [stats(0), stats(1), stats(2)];
+            let [w, b, k] = [0, 1, 2].map(|i| Summary::of(of.iter().map(|r| term_of(r, i))));
+            let limit = information_limit(
+                class.truth(),
+                class.period(),
+                samples_of(class)[hours.iter().position(|&x| x == h).unwrap_or(0)],
+            );
             error_rows.push(ErrorRow {
                 sensor: class.name.into(),
                 hours: h,
                 seeds,
-                white_median: w.0,
-                white_worst: w.1,
-                white_identified: w.2,
-                white_covered: w.3,
-                instability_median: b.0,
-                instability_worst: b.1,
-                instability_identified: b.2,
-                instability_covered: b.3,
-                random_walk_median: k.0,
-                random_walk_worst: k.1,
-                random_walk_identified: k.2,
-                random_walk_covered: k.3,
+                white_median: w.median,
+                white_worst: w.worst,
+                white_identified: w.identified,
+                white_covered: w.covered,
+                white_rms: w.rms,
+                white_limit: limit[0],
+                instability_median: b.median,
+                instability_worst: b.worst,
+                instability_identified: b.identified,
+                instability_covered: b.covered,
+                instability_rms: b.rms,
+                instability_limit: limit[1],
+                random_walk_median: k.median,
+                random_walk_worst: k.worst,
+                random_walk_identified: k.identified,
+                random_walk_covered: k.covered,
+                random_walk_rms: k.rms,
+                random_walk_limit: limit[2],
             });
         }
     }
@@ -1087,6 +1352,7 @@ fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
     let band_table = shown(ctx, &band_rows, page);
     let error_table = shown(ctx, &error_rows, page);
     let min_tau_table = shown(ctx, &min_tau_rows, page);
+    let long_table = shown(ctx, &long_rows, page);
     if !page {
         ctx.rows(&fit_rows);
         ctx.rows(&adev_rows);
@@ -1142,24 +1408,39 @@ fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
         let mut series = Vec::new();
         for (c, class) in CLASSES.iter().enumerate() {
             let tau = crossovers(class.truth()).1;
-            let of: Vec<&ErrorRow> = error_rows
+            // (record / τ(B = K), rms, worst, limit): the 100 Hz records and the long ones.
+            let mut points: Vec<(f64, f64, f64, f64)> = error_rows
                 .iter()
                 .filter(|r| r.sensor == class.name)
+                .map(|r| {
+                    let ratio = r.hours * 3600.0 / tau;
+                    (ratio, r.random_walk_rms, r.random_walk_worst, r.random_walk_limit)
+                })
+                .chain(long_rows.iter().filter(|r| r.sensor == class.name).map(|r| {
+                    (
+                        r.ratio,
+                        r.random_walk_rms,
+                        r.random_walk_worst,
+                        r.random_walk_limit,
+                    )
+                }))
                 .collect();
-            let at = |f: fn(&ErrorRow) -> f64| -> Vec<(f64, f64)> {
-                of.iter().map(|r| (r.hours * 3600.0 / tau, f(r))).collect()
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let at = |f: fn(&(f64, f64, f64, f64)) -> f64| -> Vec<(f64, f64)> {
+                points.iter().map(|p| (p.0, f(p))).collect()
             };
+            series.push(Series::both(format!("{}: rms", class.name), at(|p| p.1)).colour(c));
             series.push(
-                Series::both(
-                    format!("{}: median", class.name),
-                    at(|r| r.random_walk_median),
-                )
-                .colour(c),
-            );
-            series.push(
-                Series::both(format!("{}: worst", class.name), at(|r| r.random_walk_worst))
+                Series::both(format!("{}: worst", class.name), at(|p| p.2))
                     .dashed()
                     .colour(c),
+            );
+            series.push(
+                Series::markers(
+                    format!("{}: information limit (1σ)", class.name),
+                    at(|p| p.3),
+                )
+                .colour(c),
             );
         }
         let span: Vec<f64> = series
@@ -1175,7 +1456,8 @@ fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
                 .colour(10),
         );
         let title = format!(
-            "random walk K: |relative error| against the record over τ(B = K) ({seeds} seeds, identified ones)"
+            "K: |relative error| against record / τ(B = K) ({seeds} seeds; to {} at 100 Hz, then 1 Hz)",
+            length(longest)
         );
         ctx.plot(|dir| {
             plot(
@@ -1259,6 +1541,8 @@ fn study(ctx: &mut Ctx, seeds: u32, hours: &[f64], page: bool) -> String {
         band_table: &band_table,
         error_table: &error_table,
         min_tau_table: &min_tau_table,
+        long: &long_rows,
+        long_table: &long_table,
         slopes: &slopes(&error_rows),
     })
 }
@@ -1294,6 +1578,8 @@ struct Page<'a> {
     band_table: &'a str,
     error_table: &'a str,
     min_tau_table: &'a str,
+    long: &'a [LongRow],
+    long_table: &'a str,
     slopes: &'a [[f64; 3]],
 }
 
@@ -1471,35 +1757,55 @@ fn markdown(p: &Page) -> String {
             .collect();
         median(&mut m)
     };
-    // K against the record over τ(B = K): where every seed identified it within 10 %, and where not.
-    let (mut held, mut failed) = (Vec::new(), Vec::new());
-    for r in p.errors {
-        let Some(s) = p.sensors.iter().find(|s| s.sensor == r.sensor) else {
-            continue;
-        };
-        let ratio = r.hours * 3600.0 / s.tau_flicker_walk_s;
-        let (_, worst, id, _) = r.terms()[2];
-        if id == r.seeds && worst <= CLAIM {
-            held.push(ratio);
-        } else {
-            failed.push(ratio);
-        }
-    }
-    let k_scaled = match (
-        held.iter().copied().reduce(f64::min),
-        failed.iter().copied().reduce(f64::max),
-    ) {
-        (Some(h), Some(f)) => format!(
-            "Here every seed identified K within 10 % at T/τ(B = K) = {h:.1} and at some longer records; \
-             the longest record where not every seed did was T/τ(B = K) = {f:.1}."
-        ),
-        (Some(h), None) => {
-            format!("Here every seed identified K within 10 % at every record, from T/τ(B = K) = {h:.1}.")
-        }
-        (None, Some(f)) => format!(
-            "Here no record, up to T/τ(B = K) = {f:.1}, had every seed identify K within 10 %."
-        ),
-        (None, None) => String::new(),
+    // K at the longest 100 Hz record: its information limit, and the fit's rms error over it.
+    let k_limit: Vec<String> = last
+        .iter()
+        .map(|r| {
+            format!(
+                "{} {} % (the fit's rms error {} %, {:.2} × the limit, over the {} of {} seeds that \
+                 identified K)",
+                r.sensor,
+                pct(r.random_walk_limit),
+                pct(r.random_walk_rms),
+                r.random_walk_rms / r.random_walk_limit,
+                r.random_walk_identified,
+                r.seeds
+            )
+        })
+        .collect();
+    // The long records: from which length on every seed identified K within 10 %.
+    let long_from: Vec<String> = CLASSES
+        .iter()
+        .map(|c| {
+            let of: Vec<&LongRow> = p.long.iter().filter(|r| r.sensor == c.name).collect();
+            let from = (0..of.len()).find(|&i| of[i..].iter().all(|r| r.k_within_claim()));
+            match from {
+                Some(i) => format!(
+                    "{}: from {} τ(B = K) ({}; K limit {} %)",
+                    c.name,
+                    of[i].ratio,
+                    length(of[i].hours),
+                    pct(of[i].random_walk_limit)
+                ),
+                None => format!(
+                    "{}: not by {} τ(B = K)",
+                    c.name,
+                    of.last().map_or(f64::NAN, |r| r.ratio)
+                ),
+            }
+        })
+        .collect();
+    let long_all = CLASSES.iter().all(|c| {
+        p.long
+            .iter()
+            .filter(|r| r.sensor == c.name)
+            .last()
+            .is_some_and(LongRow::k_within_claim)
+    });
+    let long_verdict = if long_all {
+        "**Every sensor's K is within 10 % of the truth on every seed at the longest of these records.**"
+    } else {
+        "**Not every sensor's K is within 10 % on every seed at the longest of these records.**"
     };
     // The fit over every cluster against the study's: per term, on how many sensors its median error is
     // lower (of those where both fits identified the term).
@@ -1589,10 +1895,25 @@ fn markdown(p: &Page) -> String {
          at {longest_len}: {misfit:.2}).\n\n\
          How the median error falls with the record (log-log slope over the lengths, −0.5 for an error ∝ 1/√T): \
          {slopes}.\n\n\
-         The random walk is the term a record shows last: it needs clusters well past τ(B = K), so its \
-         accuracy follows the record's length over τ(B = K) more than its length in hours (the last figure: \
-         every sensor on one axis). {k_scaled}\n\n\
          ![N](noise_white.png)\n\n![B](noise_instability.png)\n\n![K](noise_random_walk.png)\n\n\
+         {h2} The random walk needs a record many times τ(B = K)\n\n\
+         The random walk is the term a record shows last: only the spectrum below about 1/τ(B = K) carries \
+         it, a record of length T holds about T/τ(B = K) independent looks at that band, and no estimator \
+         does better than the information they hold. The tables' *limit* is that information: the \
+         Cramér–Rao bound on each density's relative standard deviation for the record, from the three axes' \
+         spectra (Whittle's approximation: the rate's spectrum N² + B²/(2πf) + K²/(2πf)² at the record's \
+         frequencies). At {longest_len}, K's limit is {k_limit}. With {seeds} seeds the worst error is about \
+         2–2.5 standard deviations, so every seed within 10 % needs a limit near 4 %: no estimator meets the \
+         issue's 10 % for K at {longest_len} on these sensors; the fit's rms error is near the limit where \
+         most seeds identify K (a seed that does not is left out of the rms, which flatters a sensor where \
+         few do).\n\n\
+         Long records show where it is met: each sensor at {long_rate} Hz (its densities unchanged: from 16 s \
+         on, where the fit starts, its Allan variance is the 100 Hz sensor's), records of \
+         {ratios} × τ(B = K), {seeds} seeds each (one recording a seed, its shorter records its beginning), \
+         fitted as above.\n\n\
+         {long_table}\n\
+         Every seed identified K within 10 % from that length on: {long_from}. {long_verdict} The last figure \
+         puts every record, 100 Hz and long, on one axis: the record over τ(B = K).\n\n\
          ![K against T / τ(B = K)](noise_random_walk_scaled.png)\n\n\
          {h2} One recording\n\n\
          Seed 0 at {longest_len}: the measured Allan deviation (the three axes' variances pooled), the fit \
@@ -1610,12 +1931,32 @@ fn markdown(p: &Page) -> String {
         verdict = if all_hold {
             "Every identified term of every sensor is within 10 % of the truth at this length."
         } else {
-            "Not every identified term is within 10 % of the truth at this length (above)."
+            "Not every identified term is within 10 % of the truth at this length (above): the random \
+             walk K needs a longer record, and no estimator can do better at this one (the section on the \
+             random walk below: its information limit, and the long records where K is within 10 %)."
         },
         first = first_within.join("; "),
         cov = coverage.join(", "),
         cov_all = coverage_all.join(", "),
         slopes = slopes.join("; "),
+        k_limit = k_limit.join("; "),
+        long_rate = LONG_RATE_HZ,
+        ratios = p
+            .long
+            .iter()
+            .map(|r| r.ratio)
+            .fold(Vec::<f64>::new(), |mut v, r| {
+                if !v.contains(&r) {
+                    v.push(r);
+                }
+                v
+            })
+            .iter()
+            .map(f64::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
+        long_table = p.long_table,
+        long_from = long_from.join("; "),
         sensors_table = p.sensors_table,
         band_table = p.band_table,
         error_table = p.error_table,
@@ -1629,7 +1970,7 @@ mod tests {
 
     fn fit(class: &Class, seconds: f64, seed: u32) -> Fit {
         let n = (seconds * class.rate_hz) as u64;
-        record(class, seed, &[n]).0[0].from16
+        record(class, 0, seed, &[n]).0[0].from16
     }
 
     /// A white-noise sensor (B = K = 0) over 10 minutes: N within 10 % on every seed, and neither B nor K
@@ -1663,6 +2004,23 @@ mod tests {
         let t = fit(&class, 7200.0, 0).terms.expect("a fit");
         assert!(t[2].is_identified());
         assert!((t[2].value() / k - 1.0).abs() < 0.25, "{t:?}");
+    }
+
+    /// The information limit of white noise alone is the sample variance's: `n/2` periodogram ordinates
+    /// on each of three axes, each worth one unit of information on `ln N²`, so `N`'s relative deviation is
+    /// `½ √(2 / 3n)`; a term known to be absent is left out; adding a term can only lose information on
+    /// the others.
+    #[test]
+    fn the_information_limit_of_white_noise_is_the_sample_variances() {
+        let n = 10_000;
+        let white = information_limit([1e-3, 0.0, 0.0], 0.01, n);
+        let expected = 0.5 * (2.0 / (3.0 * n as f64)).sqrt();
+        assert!((white[0] / expected - 1.0).abs() < 1e-12, "{white:?}");
+        assert!(white[1].is_nan() && white[2].is_nan());
+        let truth = CLASSES[0].truth();
+        let all = information_limit(truth, 0.01, n);
+        let without_k = information_limit([truth[0], truth[1], 0.0], 0.01, n);
+        assert!(all[0] > without_k[0] && all[1] > without_k[1], "{all:?} {without_k:?}");
     }
 
     /// The exact Allan variance of a Gauss–Markov sequence: the closed form and the sum agree where both
