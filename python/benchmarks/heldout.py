@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import itertools
+import math
 import sys
 import time
 from pathlib import Path
@@ -275,11 +276,21 @@ def setting_text(s) -> str:
     return f"drift {d:g}, delay {g:g} samples{', motion bias' if m else ''}"
 
 
+# A Gaussian error's chance of lying outside its 3σ ellipsoid (χ²₃ above its 99.73 % quantile).
+OUTSIDE_3SIGMA = 1.0 - 0.9973
+
+
+def binomial_tail(n: int, p: float, k: int) -> float:
+    """P(at least k of n independent events of probability p)."""
+    return float(1.0 - sum(math.comb(n, i) * p ** i * (1.0 - p) ** (n - i) for i in range(k)))
+
+
 def envelope_table(pairs, env) -> Tuple[List[str], Dict]:
     sg = {c.trial: c.setting for c in env.choices}
     rows = ["| horizon | pairs | inside 1σ (68.3 %) held out | inside 3σ (99.7 %) held out | "
+            "outside 3σ held out: count (expected; P(≥ count)) | "
             "in-sample 1σ | in-sample 3σ | median error / predicted rms |",
-            "|---:|---:|---:|---:|---:|---:|---:|"]
+            "|---:|---:|---:|---:|---:|---:|---:|---:|"]
     figures = {}
     for h in HORIZONS:
         held, ins, ratio = [], [], []
@@ -295,7 +306,9 @@ def envelope_table(pairs, env) -> Tuple[List[str], Dict]:
         held, ins = np.concatenate(held), np.concatenate(ins)
         c1, c3 = np.mean(held <= CHI2_3[1]), np.mean(held <= CHI2_3[3])
         figures[h] = (len(held), c1, c3)
+        outside = int(np.sum(held > CHI2_3[3]))
         rows.append(f"| {h:.0f} s | {len(held)} | {100 * c1:.1f} % | {100 * c3:.1f} % | "
+                    f"{outside} ({len(held) * OUTSIDE_3SIGMA:.2f}; {binomial_tail(len(held), OUTSIDE_3SIGMA, outside):.2f}) | "
                     f"{100 * np.mean(ins <= CHI2_3[1]):.1f} % | {100 * np.mean(ins <= CHI2_3[3]):.1f} % | "
                     f"{np.median(ratio):.2f} |")
     return rows, figures
@@ -419,7 +432,10 @@ envelope meets both levels, and this weighting puts the 3σ level first; in-samp
 {env.in_sample_setting[1]:g}, σ_τ {env.in_sample_setting[2] * 1e3:g} ms, σ_0 {env.in_sample_setting[3]:g}; the folds
 chose {", ".join(f"({k[0]:g}, {k[1]:g}, {k[2] * 1e3:g} ms, {k[3]:g}) ({n})" for k, n in env.settings_chosen().items())}).
 Coverage: the share of the error vectors inside the 1σ and 3σ ellipsoids (normalized squared error below
-the χ²₃ quantiles {CHI2_3[1]:.3f} and {CHI2_3[3]:.3f}), each trial with the setting chosen without it.
+the χ²₃ quantiles {CHI2_3[1]:.3f} and {CHI2_3[3]:.3f}), each trial with the setting chosen without it. The
+count outside 3σ is set against what a Gaussian error would leave there (0.27 % of the pairs) and the chance
+of at least that many if the pairs were independent (they are not: a trial's windows overlap, so the true
+chance is larger); a chance above 0.05 means the count does not show the envelope too narrow.
 
 {chr(10).join(envelope_table(pairs, env)[0])}
 """
