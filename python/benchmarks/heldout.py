@@ -196,13 +196,19 @@ def coverage(pairs: List[dict], setting: Tuple[float, float, float, float]) -> T
 
 
 def envelope_objective(pairs: List[dict], setting: Tuple[float, float, float, float]) -> float:
-    """How far the coverage is from a Gaussian's, each level's miss rate against its own: |c₁ − 68.27 %| /
-    31.73 % + |c₃ − 99.73 %| / 0.27 %. On errors with heavier tails than a Gaussian's no envelope meets
-    both levels; this weighting puts the 3σ level first (a miss of 1 % there counts as much as 12 % at
-    1σ): the envelope is one to bound errors with."""
-    nees, _ = coverage(pairs, setting)
-    c1, c3 = np.mean(nees <= CHI2_3[1]), np.mean(nees <= CHI2_3[3])
-    return abs(c1 - 0.6827) / 0.3173 + abs(c3 - 0.9973) / 0.0027
+    """How far the coverage is from a Gaussian's, each level's miss rate against its own, summed over the
+    horizons: Σ_h |c₁ − 68.27 %| / 31.73 % + |c₃ − 99.73 %| / 0.27 %. Each horizon counts on its own (the
+    issue asks for coverage per horizon; pooled, the many short windows would outvote the few long ones).
+    On errors with heavier tails than a Gaussian's no envelope meets both levels; this weighting puts the
+    3σ level first (a miss of 1 % there counts as much as 12 % at 1σ): the envelope is one to bound errors
+    with."""
+    total = 0.0
+    for h in HORIZONS:
+        nees, _ = coverage([p for p in pairs if p["horizon"] == h], setting)
+        if len(nees):
+            c1, c3 = np.mean(nees <= CHI2_3[1]), np.mean(nees <= CHI2_3[3])
+            total += abs(c1 - 0.6827) / 0.3173 + abs(c3 - 0.9973) / 0.0027
+    return float(total)
 
 
 def per_trial(t: bm.Trial, q: np.ndarray) -> np.ndarray:
@@ -427,7 +433,8 @@ and wander are not published, nor the optical system's accuracy and synchronisat
 {{{", ".join(f"{x:g}" for x in TRUTH_SIGMAS)}}} rad (0.004 rad: a millimetre of marker error over a 25 cm
 baseline): the setting whose coverage on the
 other trials is closest to a Gaussian's, each level's miss rate against its own
-(`|c₁ − 68.27 %| / 31.73 % + |c₃ − 99.73 %| / 0.27 %`: the errors have heavier tails than a Gaussian, no
+(`|c₁ − 68.27 %| / 31.73 % + |c₃ − 99.73 %| / 0.27 %`, summed over the horizons, each on its own so that
+the many 10 s windows do not outvote the few 60 s ones: the errors have heavier tails than a Gaussian, no
 envelope meets both levels, and this weighting puts the 3σ level first; in-sample: σ_g {env.in_sample_setting[0]:g}, σ_w
 {env.in_sample_setting[1]:g}, σ_τ {env.in_sample_setting[2] * 1e3:g} ms, σ_0 {env.in_sample_setting[3]:g}; the folds
 chose {", ".join(f"({k[0]:g}, {k[1]:g}, {k[2] * 1e3:g} ms, {k[3]:g}) ({n})" for k, n in env.settings_chosen().items())}).
