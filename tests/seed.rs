@@ -61,16 +61,16 @@ fn seed_eq4_rk4_norm_after_many_steps_is_power_of_one_minus_beta() {
     }
 }
 
-/// `|R(ix)|²` typed from the closed forms of each stability polynomial (not from the library's tableaux).
-fn closed_form_factor(m: SchemeKind, x: f64) -> f64 {
-    // R(z) as a complex polynomial at z = ix.
-    let coeffs: &[f64] = match m {
-        SchemeKind::Euler => &[1.0, 1.0],
-        SchemeKind::Rk2 => &[1.0, 1.0, 0.5],
-        SchemeKind::Rk3 => &[1.0, 1.0, 0.5, 1.0 / 6.0],
-        SchemeKind::Rk4 => &[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0],
-        // Dormand–Prince's fifth-order solution: T₅(z) + z⁶/600.
-        SchemeKind::Rk5 => &[
+/// The stability polynomial's coefficients typed from the closed forms (not from the library's tableaux):
+/// Euler … Rk4 the truncated exponential, Rk5 (Dormand–Prince's fifth-order solution) `T₅(z) + z⁶/600`;
+/// `None` for the schemes that are not Runge–Kutta.
+fn closed_form_coefficients(m: SchemeKind) -> Option<&'static [f64]> {
+    match m {
+        SchemeKind::Euler => Some(&[1.0, 1.0]),
+        SchemeKind::Rk2 => Some(&[1.0, 1.0, 0.5]),
+        SchemeKind::Rk3 => Some(&[1.0, 1.0, 0.5, 1.0 / 6.0]),
+        SchemeKind::Rk4 => Some(&[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0]),
+        SchemeKind::Rk5 => Some(&[
             1.0,
             1.0,
             0.5,
@@ -78,9 +78,17 @@ fn closed_form_factor(m: SchemeKind, x: f64) -> f64 {
             1.0 / 24.0,
             1.0 / 120.0,
             1.0 / 600.0,
-        ],
-        SchemeKind::ExpMap | SchemeKind::Magnus4 | SchemeKind::Cf4 => return 1.0,
+        ]),
+        SchemeKind::ExpMap | SchemeKind::Magnus4 | SchemeKind::Cf4 => None,
+    }
+}
+
+/// `|R(ix)|²` from the closed forms (1 for the schemes that keep the norm).
+fn closed_form_factor(m: SchemeKind, x: f64) -> f64 {
+    let Some(coeffs) = closed_form_coefficients(m) else {
+        return 1.0;
     };
+    // R(z) as a complex polynomial at z = ix.
     let (mut re, mut im) = (0.0, 0.0);
     let (mut pr, mut pi) = (1.0, 0.0); // (ix)^m
     for &c in coeffs {
@@ -213,24 +221,9 @@ fn seed_section3_baumgarte_jumps_then_settles_on_a_wrong_norm() {
     assert!(settled[0] > 0.0 && settled[1] < 0.0, "{settled:?}");
 }
 
-/// `R(−y)` typed from the closed forms (Euler … Rk4: the truncated exponential; Rk5: T₅ + z⁶/600).
+/// `R(−y)` from the closed forms.
 fn closed_form_r(m: SchemeKind, z: f64) -> f64 {
-    let coeffs: &[f64] = match m {
-        SchemeKind::Euler => &[1.0, 1.0],
-        SchemeKind::Rk2 => &[1.0, 1.0, 0.5],
-        SchemeKind::Rk3 => &[1.0, 1.0, 0.5, 1.0 / 6.0],
-        SchemeKind::Rk4 => &[1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0],
-        SchemeKind::Rk5 => &[
-            1.0,
-            1.0,
-            0.5,
-            1.0 / 6.0,
-            1.0 / 24.0,
-            1.0 / 120.0,
-            1.0 / 600.0,
-        ],
-        _ => unreachable!(),
-    };
+    let coeffs = closed_form_coefficients(m).expect("a Runge–Kutta scheme");
     coeffs.iter().rev().fold(0.0, |acc, c| acc * z + c)
 }
 

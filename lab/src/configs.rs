@@ -642,49 +642,35 @@ impl Integrator<f32> for FusionRun {
     }
 }
 
-struct GlamRun {
-    q: glam::Quat,
-    prev: Option<Vec3<f32>>,
-}
-impl Integrator<f32> for GlamRun {
-    fn feed(&mut self, samples: &[Sample<f32>]) {
-        let (mut q, mut prev) = (self.q, self.prev);
-        for s in samples {
-            if let Some(w0) = prev {
-                let v = (w0 + s.w) * (0.5 * s.dt);
-                let v = glam::Vec3::from(mint::Vector3::from(v));
-                q = (q * glam::Quat::from_scaled_axis(v)).normalize();
-            }
-            prev = Some(s.w);
+/// glam's loop (`q * Quat::from_scaled_axis(v)`, normalized), one per precision: glam's f32 and f64
+/// quaternions are distinct types with no trait in common.
+macro_rules! glam_run {
+    ($name:ident, $real:ty, $quat:ty, $vec:ty) => {
+        struct $name {
+            q: $quat,
+            prev: Option<Vec3<$real>>,
         }
-        (self.q, self.prev) = (q, prev);
-    }
-    fn attitude(&self) -> Quat<f32> {
-        Quat::from_mint(self.q)
-    }
-}
-
-struct DGlamRun {
-    q: glam::DQuat,
-    prev: Option<Vec3<f64>>,
-}
-impl Integrator<f64> for DGlamRun {
-    fn feed(&mut self, samples: &[Sample<f64>]) {
-        let (mut q, mut prev) = (self.q, self.prev);
-        for s in samples {
-            if let Some(w0) = prev {
-                let v = (w0 + s.w) * (0.5 * s.dt);
-                let v = glam::DVec3::from(mint::Vector3::from(v));
-                q = (q * glam::DQuat::from_scaled_axis(v)).normalize();
+        impl Integrator<$real> for $name {
+            fn feed(&mut self, samples: &[Sample<$real>]) {
+                let (mut q, mut prev) = (self.q, self.prev);
+                for s in samples {
+                    if let Some(w0) = prev {
+                        let v = (w0 + s.w) * (0.5 * s.dt);
+                        let v = <$vec>::from(mint::Vector3::from(v));
+                        q = (q * <$quat>::from_scaled_axis(v)).normalize();
+                    }
+                    prev = Some(s.w);
+                }
+                (self.q, self.prev) = (q, prev);
             }
-            prev = Some(s.w);
+            fn attitude(&self) -> Quat<$real> {
+                Quat::from_mint(self.q)
+            }
         }
-        (self.q, self.prev) = (q, prev);
-    }
-    fn attitude(&self) -> Quat<f64> {
-        Quat::from_mint(self.q)
-    }
+    };
 }
+glam_run!(GlamRun, f32, glam::Quat, glam::Vec3);
+glam_run!(DGlamRun, f64, glam::DQuat, glam::DVec3);
 
 fn nalgebra_peer<T: LabReal>(
     p: Peer,

@@ -143,47 +143,25 @@ pub fn propagate<T: Real, S: Scheme<T>, Z: Stabilizer>(
     n: usize,
 ) -> Result<Outcome<T>, Error> {
     let q = Quat::<T>::from_f64(q0);
+    // One propagator type per input model: each arm drives its own.
+    macro_rules! drive_with {
+        ($model:expr) => {
+            drive(
+                Propagator::new(q, scheme, $model, stabilizer)?,
+                input,
+                q0,
+                rate,
+                t_end,
+                n,
+            )
+        };
+    }
     match input {
-        Input::Hold => drive(
-            Propagator::new(q, scheme, Hold, stabilizer)?,
-            input,
-            q0,
-            rate,
-            t_end,
-            n,
-        ),
-        Input::Linear => drive(
-            Propagator::new(q, scheme, Linear::new(), stabilizer)?,
-            input,
-            q0,
-            rate,
-            t_end,
-            n,
-        ),
-        Input::History => drive(
-            Propagator::new(q, scheme, History::new(), stabilizer)?,
-            input,
-            q0,
-            rate,
-            t_end,
-            n,
-        ),
-        Input::TwiceRate => drive(
-            Propagator::new(q, scheme, TwiceRate::new(), stabilizer)?,
-            input,
-            q0,
-            rate,
-            t_end,
-            n,
-        ),
-        Input::GaussPoints => drive(
-            Propagator::new(q, scheme, GaussPoints::new(), stabilizer)?,
-            input,
-            q0,
-            rate,
-            t_end,
-            n,
-        ),
+        Input::Hold => drive_with!(Hold),
+        Input::Linear => drive_with!(Linear::new()),
+        Input::History => drive_with!(History::new()),
+        Input::TwiceRate => drive_with!(TwiceRate::new()),
+        Input::GaussPoints => drive_with!(GaussPoints::new()),
     }
 }
 

@@ -1798,8 +1798,7 @@ fn markdown(p: &Page) -> String {
     let long_all = CLASSES.iter().all(|c| {
         p.long
             .iter()
-            .filter(|r| r.sensor == c.name)
-            .last()
+            .rfind(|r| r.sensor == c.name)
             .is_some_and(LongRow::k_within_claim)
     });
     let long_verdict = if long_all {

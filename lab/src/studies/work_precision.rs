@@ -981,7 +981,8 @@ fn pareto(points: &[&Point], cost: impl Fn(&Point) -> Option<f64>) -> Vec<(f64, 
 }
 
 /// Error against host time per sample, one series per configuration, Pareto front dashed.
-pub fn plot_points(ctx: &mut Ctx, name: &str, title: &str, points: &[Point]) {
+/// Plots the points' error against host time (`<name>.svg`, `.png`) and returns the figure's Markdown link.
+pub fn plot_points(ctx: &mut Ctx, name: &str, title: &str, points: &[Point]) -> String {
     let mut configs: Vec<Config> = Vec::new();
     for p in points {
         if !configs.contains(&p.config) {
@@ -1026,6 +1027,7 @@ pub fn plot_points(ctx: &mut Ctx, name: &str, title: &str, points: &[Point]) {
             &series,
         )
     });
+    format!("![{name}]({name}.png)\n\n")
 }
 
 fn fmt_err(p: &Point) -> String {
@@ -1190,13 +1192,12 @@ pub fn per_scene(
                     .map(WpScenes),
             );
             let name = format!("wp_{}_{}", scene.key(), prec.name());
-            plot_points(
+            figures += &plot_points(
                 ctx,
                 &name,
                 &format!("{}, {}: error against host time", scene.name(), prec.name()),
                 &points,
             );
-            let _ = write!(figures, "![{name}]({name}.png)\n\n");
             let r = table_rate(&rates);
             let best = |peer: bool| {
                 points
@@ -1265,13 +1266,12 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
                 .map(WpStabilizers),
         );
         let name = format!("wp_stabilizers_{}_{}", scene.key(), prec.name());
-        plot_points(
+        figures += &plot_points(
             ctx,
             &name,
             &format!("{}, {}: stabilizers", scene.name(), prec.name()),
             &points,
         );
-        let _ = write!(figures, "![{name}]({name}.png)\n\n");
     }
     let table = ctx.table(&csv);
     format!(
