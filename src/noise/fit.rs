@@ -243,6 +243,104 @@ fn fit_subset(rows: &[([f64; 3], f64, f64)], mask: u8) -> Option<Solution> {
     })
 }
 
+/// The generalized covariance of the angle `x` (the rate's integral) under the model with coefficients
+/// `c = (N², B², K²)`: `Cov(Σ aₚ x(tₚ), Σ b_q x(s_q)) = Σ aₚ b_q G(tₚ − s_q)` for weights that annihilate
+/// constants and straight lines (an Allan difference's do). White rate noise makes `x` a Brownian motion,
+/// `G = −N² |u| / 2`; a rate random walk makes it an integrated one, `G = K² |u|³ / 12`; flicker noise of
+/// Allan variance `(2 ln 2/π) B²` has `G = B² u² ln|u| / (2π)`. Each gives its term of the model's Allan
+/// variance through `σ²(τ) = (G(2τ) − 4 G(τ)) / τ²` (the tests check all three).
+fn generalized_covariance(c: [f64; 3], u: f64) -> f64 {
+    let u = u.abs();
+    let flicker = if u > 0.0 {
+        c[1] / (2.0 * core::f64::consts::PI) * u * u * libm::log(u)
+    } else {
+        0.0
+    };
+    -0.5 * c[0] * u + flicker + c[2] / 12.0 * u * u * u
+}
+
+/// The covariance of two Allan differences of cluster means, `d = ȳ₂ − ȳ₁ = (x(t + 2τ) − 2x(t + τ) +
+/// x(t)) / τ`: the fine one at `τ_f` starting at `t_f`, the coarse one at `τ_c` starting at 0.
+fn difference_covariance(c: [f64; 3], tau_f: f64, t_f: f64, tau_c: f64) -> f64 {
+    const A: [f64; 3] = [1.0, -2.0, 1.0];
+    let mut s = 0.0;
+    for (p, ap) in A.iter().enumerate() {
+        for (q, aq) in A.iter().enumerate() {
+            s += ap * aq * generalized_covariance(c, t_f + p as f64 * tau_f - q as f64 * tau_c);
+        }
+    }
+    s / (tau_f * tau_c)
+}
+
+/// Octaves further apart than this are taken as uncorrelated: their estimates' correlation falls by about
+/// `2^(−Δk/2)` where a random walk dominates (0.02 at 12 octaves), `2^(−1.5 Δk)` for white noise; the sum
+/// over a pair costs `2^Δk` terms.
+const OCTAVE_REACH: u32 = 12;
+/// Fine differences beyond the coarse one's span counted on each side.
+const TAIL: i64 = 32;
+
+/// The covariance of two octaves' Allan variance estimates (`σ̂² = Σ dᵢ² / (2n)`, non-overlapping, the
+/// coarse octave's clusters made of the fine one's) under the model `c`, for Gaussian noise:
+/// `Cov(σ̂²_f, σ̂²_c) = Σᵢ Cov(d_fᵢ, d_c)² / (2 n_f)`, the sum over the fine differences around one coarse
+/// difference (edges neglected); `n_f` the fine octave's differences (over every axis pooled: the axes'
+/// shares of the sum then add up to the same). Points' τ must be a power of two apart.
+fn octave_covariance(c: [f64; 3], fine: (f64, f64), coarse: (f64, f64)) -> f64 {
+    let ((tau_f, differences_f), (tau_c, _)) = (fine, coarse);
+    let ratio = libm::round(tau_c / tau_f);
+    if !(ratio >= 1.0) || ratio > f64::from(1_u32 << OCTAVE_REACH) {
+        return 0.0;
+    }
+    let span = 2 * ratio as i64;
+    let mut s = 0.0;
+    for i in -TAIL..span + TAIL {
+        let v = difference_covariance(c, tau_f, i as f64 * tau_f, tau_c);
+        s += v * v;
+    }
+    s / (2.0 * differences_f)
+}
+
+/// `M = Σₖ Σₗ wₖ wₗ fₖ fₗᵀ Σₖₗ` over the points `(τ, σ², differences)`, with the rows' weights `wₖ` and
+/// functions `fₖ` and the points' covariance `Σ` under the model `c`.
+fn sandwich_meat(
+    points: &[(f64, f64, f64)],
+    rows: &[([f64; 3], f64, f64)],
+    c: [f64; 3],
+) -> [[f64; 3]; 3] {
+    let mut m = [[0.0; 3]; 3];
+    for (k, (pk, rk)) in points.iter().zip(rows).enumerate() {
+        for (pl, rl) in points.iter().zip(rows).skip(k) {
+            let (fine, coarse) = if pk.0 <= pl.0 { (pk, pl) } else { (pl, pk) };
+            let cov = octave_covariance(c, (fine.0, fine.2), (coarse.0, coarse.2));
+            // Each off-diagonal pair stands for both (k, l) and (l, k).
+            let both = if core::ptr::eq(pk, pl) { 1.0 } else { 2.0 };
+            let w = rk.2 * rl.2 * cov;
+            for i in 0..3 {
+                for j in 0..3 {
+                    m[i][j] += 0.5 * both * w * (rk.0[i] * rl.0[j] + rl.0[i] * rk.0[j]);
+                }
+            }
+        }
+    }
+    m
+}
+
+/// `C M C`.
+fn sandwich(c: &[[f64; 3]; 3], m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let mut cm = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            cm[i][j] = (0..3).map(|k| c[i][k] * m[k][j]).sum();
+        }
+    }
+    let mut out = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            out[i][j] = (0..3).map(|k| cm[i][k] * c[k][j]).sum();
+        }
+    }
+    out
+}
+
 /// The most points a fit takes (octaves of a [`AllanVariance`] of up to 64 octaves).
 const MAX_POINTS: usize = 64;
 
@@ -251,8 +349,20 @@ impl NoiseFit {
     /// non-positive τ or a variance that is not finite and non-negative is skipped).
     ///
     /// Returns `None` with fewer than two usable points.
+    ///
+    /// The standard errors take the points as independent, each with the relative variance
+    /// `2 / differences`. The fits of an [`AllanVariance`] ([`NoiseFit::pooled_from`], [`NoiseFit::axis`])
+    /// know more: how its octaves share their samples, so their standard errors count that instead.
     #[must_use]
     pub fn of(points: impl IntoIterator<Item = Point>) -> Option<Self> {
+        Self::of_with(points, false)
+    }
+
+    /// [`NoiseFit::of`]; with `octaves`, the points are a non-overlapping Allan variance's octaves (each
+    /// τ a power of two times the shortest, the same samples under every one), and the coefficients'
+    /// covariance is the sandwich `C M C` (`C` the weighted fit's, `M = XᵀW Σ W X`) with `Σ` the points'
+    /// covariance under the fitted model ([`octave_covariance`]).
+    fn of_with(points: impl IntoIterator<Item = Point>, octaves: bool) -> Option<Self> {
         let mut kept = [(0.0, 0.0, 0.0); MAX_POINTS];
         let mut len = 0;
         for p in points {
@@ -308,18 +418,27 @@ impl NoiseFit {
             }
             rows
         };
-        let full = fit_subset(rows_final.get(..len)?, 0b111);
+        let rows_final = rows_final.get(..len)?;
+        let full = fit_subset(rows_final, 0b111);
         let dof = len.saturating_sub(s.n).max(1) as f64;
         let misfit = s.residual / dof;
         let inflate = misfit.max(1.0);
+        // With the octaves' own covariance: the sandwich, on the terms fitted and on all three.
+        let meat = octaves.then(|| sandwich_meat(kept, rows_final, s.coefficients));
+        let covariance = |sol: &Solution| match &meat {
+            Some(m) => sandwich(&sol.covariance, m),
+            None => sol.covariance,
+        };
+        let own_cov = covariance(&s);
+        let full_cov = full.as_ref().map(covariance);
         let mut terms = [Term {
             coefficient: 0.0,
             std_error: f64::INFINITY,
         }; 3];
         for (j, term) in terms.iter_mut().enumerate() {
             term.coefficient = s.coefficients[j];
-            let own = (s.mask & (1 << j) != 0).then(|| s.covariance[j][j]);
-            let variance = own.or_else(|| full.as_ref().map(|f| f.covariance[j][j]));
+            let own = (s.mask & (1 << j) != 0).then(|| own_cov[j][j]);
+            let variance = own.or_else(|| full_cov.map(|f| f[j][j]));
             if let Some(v) = variance.filter(|v| *v >= 0.0) {
                 term.std_error = libm::sqrt(v * inflate);
             }
@@ -345,7 +464,7 @@ impl NoiseFit {
         axis: usize,
         min_tau: f64,
     ) -> Option<Self> {
-        Self::of(
+        Self::of_with(
             avar.clusters()
                 .filter(|c| c.tau >= min_tau)
                 .map(|c: Cluster<T>| Point {
@@ -358,6 +477,7 @@ impl NoiseFit {
                     .to_f64(),
                     differences: f64::from(c.differences),
                 }),
+            true,
         )
     }
 
@@ -374,11 +494,15 @@ impl NoiseFit {
         avar: &AllanVariance<T, OCTAVES>,
         min_tau: f64,
     ) -> Option<Self> {
-        Self::of(avar.clusters().filter(|c| c.tau >= min_tau).map(|c| Point {
-            tau: c.tau,
-            variance: (c.variance.x.to_f64() + c.variance.y.to_f64() + c.variance.z.to_f64()) / 3.0,
-            differences: 3.0 * f64::from(c.differences),
-        }))
+        Self::of_with(
+            avar.clusters().filter(|c| c.tau >= min_tau).map(|c| Point {
+                tau: c.tau,
+                variance: (c.variance.x.to_f64() + c.variance.y.to_f64() + c.variance.z.to_f64())
+                    / 3.0,
+                differences: 3.0 * f64::from(c.differences),
+            }),
+            true,
+        )
     }
 
     /// The fitted curve's Allan variance at `tau` (s).
@@ -388,5 +512,49 @@ impl NoiseFit {
         self.white.coefficient * f[0]
             + self.instability.coefficient * f[1]
             + self.random_walk.coefficient * f[2]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each term's generalized covariance gives its Allan variance: `(G(2τ) − 4 G(τ)) / τ²` is `N²/τ`,
+    /// `(2 ln 2/π) B²`, `K² τ/3`; and an Allan difference's variance from [`difference_covariance`] is
+    /// twice that.
+    #[test]
+    fn the_generalized_covariances_give_the_model() {
+        for tau in [0.01, 1.0, 300.0] {
+            for (j, c) in [[2.0, 0.0, 0.0], [0.0, 3.0, 0.0], [0.0, 0.0, 5.0]]
+                .into_iter()
+                .enumerate()
+            {
+                let g = |u| generalized_covariance(c, u);
+                let avar = (g(2.0 * tau) - 4.0 * g(tau)) / (tau * tau);
+                let model = c[j] * basis(tau)[j];
+                assert!(
+                    (avar / model - 1.0).abs() < 1e-9,
+                    "{j} {tau}: {avar} {model}"
+                );
+                let d = difference_covariance(c, tau, 0.0, tau);
+                assert!((d / (2.0 * model) - 1.0).abs() < 1e-9, "{j} {tau}: {d}");
+            }
+        }
+    }
+
+    /// White noise: consecutive Allan differences are correlated by −½, so an octave's estimate has the
+    /// relative variance `3 / n` (not the `2 / n` of independent differences); the next octave's shares
+    /// its samples: correlation `3 / √72 ≈ 0.354` (worked by hand from the clusters' overlaps).
+    #[test]
+    fn white_noise_octaves_are_correlated_as_worked_by_hand() {
+        let c = [1.0, 0.0, 0.0];
+        let (tau, n) = (0.5, 1000.0);
+        let avar = c[0] / tau;
+        let own = octave_covariance(c, (tau, n), (tau, n));
+        assert!((own / (avar * avar) - 3.0 / n).abs() < 1e-12, "{own}");
+        let next = octave_covariance(c, (tau, n), (2.0 * tau, n / 2.0));
+        let next_own = octave_covariance(c, (2.0 * tau, n / 2.0), (2.0 * tau, n / 2.0));
+        let corr = next / libm::sqrt(own * next_own);
+        assert!((corr - 3.0 / libm::sqrt(72.0)).abs() < 1e-9, "{corr}");
     }
 }

@@ -1888,10 +1888,11 @@ fn markdown(p: &Page) -> String {
          Every seed identified the term and was within 10 % from that length on: {first}.\n\n\
          The fit's own ±2 standard-error interval held the truth, at {longest_len} over the sensors: {cov}; \
          over every length: {cov_all} (a Gaussian estimate with honest standard errors: about 95 %). {short} \
-         The standard errors take each octave's point as independent, with the relative variance its own count \
-         of differences gives; the octaves share their samples, so their points are correlated. The fit \
-         inflates them by its misfit per degree of freedom where that exceeds 1 (median \
-         at {longest_len}: {misfit:.2}).\n\n\
+         The octaves share their samples, so their points are correlated (and consecutive differences within \
+         an octave too): the standard errors count that, from the covariance of the octaves' estimates under \
+         the fitted model (`NoiseFit`'s sandwich; 0.3's took the points as independent, and its intervals \
+         held the truth too rarely: CHANGELOG.md). The fit also inflates them by its misfit per degree \
+         of freedom where that exceeds 1 (median at {longest_len}: {misfit:.2}).\n\n\
          How the median error falls with the record (log-log slope over the lengths, −0.5 for an error ∝ 1/√T): \
          {slopes}.\n\n\
          ![N](noise_white.png)\n\n![B](noise_instability.png)\n\n![K](noise_random_walk.png)\n\n\
