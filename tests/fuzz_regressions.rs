@@ -381,3 +381,20 @@ fn a_huge_period_gives_a_finite_bias_growth() {
         finite(format!("{m:?}"));
     }
 }
+
+/// Found by `frontend` (f64): a drift whose growth per period overflows (`drift² · period` beyond
+/// `f64::MAX`, with `drift²` itself finite, as `with_drift` requires) made the variance's growth over
+/// *zero* periods `∞ · 0 = NaN`, saturated to `T::MAX`: right after `with_initial(bias, σ)` the estimator
+/// reported a variance of `f64::MAX` instead of `σ²`. No time now grows nothing.
+#[test]
+fn no_time_grows_no_variance_whatever_the_drift() {
+    use quatprop::frontend::BiasEstimator;
+    use quatprop::Vec3;
+    let est = BiasEstimator::<f64>::new(20.0, 10.0, 0.05)
+        .unwrap()
+        .with_drift(1.0e154)
+        .unwrap()
+        .with_initial(Vec3::new(1e-3, -2e-3, 5e-4), 1e-3)
+        .unwrap();
+    assert_eq!(est.variance(), Vec3::new(1e-6, 1e-6, 1e-6));
+}

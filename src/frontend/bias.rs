@@ -788,6 +788,10 @@ impl<T: Real> BiasEstimator<T> {
     /// `q²` times `samples` periods, saturated at `T::MAX` (a drift so large that its growth overflows has
     /// let the bias go anywhere; the variance stays finite).
     fn growth_at(&self, q: T, samples: u32) -> T {
+        if samples == 0 {
+            // No time, no growth (`q² · period` may overflow, and ∞ · 0 is NaN).
+            return T::ZERO;
+        }
         let g = q * q * self.period * count::<T>(samples);
         if g <= T::MAX {
             g

@@ -32,8 +32,9 @@ pub struct Point {
 pub struct Term {
     /// The coefficient `c ≥ 0` (the density squared: `N²`, `B²` or `K²`).
     pub coefficient: f64,
-    /// Its standard error (from the fit's weights, inflated by the misfit when the curve scatters more
-    /// than its own counts say).
+    /// Its standard error: from the points' covariance under the fitted model when they are an
+    /// [`AllanVariance`]'s octaves (which share their samples), from the fit's weights otherwise; inflated
+    /// by the misfit when the curve scatters more than that says.
     pub std_error: f64,
 }
 
@@ -75,7 +76,10 @@ impl Term {
 /// squares on the variances, each weighted by its own relative variance `2/differences` at the fitted
 /// curve (iterated), with every coefficient kept non-negative (the best of the fits on each subset of the
 /// terms). Each term carries its standard error, so a recording too short to show a term says so
-/// ([`Term::is_identified`]) instead of inventing it.
+/// ([`Term::is_identified`]) instead of inventing it. Fitted to an [`AllanVariance`]
+/// ([`NoiseFit::pooled_from`], [`NoiseFit::axis`]), the standard errors count that its octaves share
+/// their samples: the weighted fit's covariance `C` sandwiches the points' covariance under the fitted
+/// model, `C XᵀW Σ W X C` (docs/noise.md measures how often the ±2 se interval holds the truth).
 ///
 /// ```
 /// use quatprop::noise::{AllanVariance, NoiseFit};
