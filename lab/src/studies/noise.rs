@@ -1761,6 +1761,13 @@ fn markdown(p: &Page) -> String {
     let k_limit: Vec<String> = last
         .iter()
         .map(|r| {
+            if r.random_walk_identified == 0 {
+                return format!(
+                    "{} {} % (no seed identified K)",
+                    r.sensor,
+                    pct(r.random_walk_limit)
+                );
+            }
             format!(
                 "{} {} % (the fit's rms error {} %, {:.2} × the limit, over the {} of {} seeds that \
                  identified K)",
