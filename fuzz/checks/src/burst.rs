@@ -91,6 +91,107 @@ fn assert_same<T: Fz, I: Model<T>, A: Accumulator<T> + Debug + PartialEq>(
     assert_eq!(quat_bits(a.attitude()), quat_bits(b.attitude()));
 }
 
+/// What the burst calls run on: a fixed period (`push_burst`) or a sensor clock (`push_burst_timed`).
+trait TimeBase<T: Fz, I: Model<T>>: Debug {
+    /// One element of a burst: a sample, or a sample and its timestamp.
+    type Item;
+    /// What an assertion on the two time bases says.
+    const WHAT: &'static str;
+    /// The library's burst call.
+    fn burst<A: Accumulator<T>>(
+        &mut self,
+        p: &mut P<T, I, A>,
+        items: &[Self::Item],
+    ) -> Result<usize, Refused>;
+    /// What the burst call is documented to do, one sample at a time.
+    fn one_at_a_time<A: Accumulator<T> + Debug + PartialEq>(
+        &mut self,
+        p: &mut P<T, I, A>,
+        items: &[Self::Item],
+    ) -> Result<usize, Refused>;
+}
+
+impl<T: Fz, I: Model<T>> TimeBase<T, I> for FixedPeriod<T> {
+    type Item = I::Sample;
+    const WHAT: &'static str = "fixed period: burst vs one at a time";
+    fn burst<A: Accumulator<T>>(
+        &mut self,
+        p: &mut P<T, I, A>,
+        items: &[I::Sample],
+    ) -> Result<usize, Refused> {
+        p.push_burst(items, self)
+    }
+    /// Each sample's `dt` from the period; a refused sample's interval carried over.
+    fn one_at_a_time<A: Accumulator<T> + Debug + PartialEq>(
+        &mut self,
+        p: &mut P<T, I, A>,
+        items: &[I::Sample],
+    ) -> Result<usize, Refused> {
+        for (index, s) in items.iter().enumerate() {
+            let dt = self.next_dt();
+            if let Err(error) = p.push(*s, dt) {
+                self.carry_over(dt);
+                return Err(Refused { index, error });
+            }
+        }
+        Ok(items.len())
+    }
+}
+
+impl<T: Fz, I: Model<T>> TimeBase<T, I> for TickClock<T> {
+    type Item = (I::Sample, u32);
+    const WHAT: &'static str = "tick clock: burst vs one at a time";
+    fn burst<A: Accumulator<T>>(
+        &mut self,
+        p: &mut P<T, I, A>,
+        items: &[(I::Sample, u32)],
+    ) -> Result<usize, Refused> {
+        p.push_burst_timed(items, self)
+    }
+    fn one_at_a_time<A: Accumulator<T> + Debug + PartialEq>(
+        &mut self,
+        p: &mut P<T, I, A>,
+        items: &[(I::Sample, u32)],
+    ) -> Result<usize, Refused> {
+        one_at_a_time(p, self, items)
+    }
+}
+
+/// `chunk` through the burst call on `burst` and one sample at a time on `one` (each a propagator and its
+/// time base), both resumed after a refusal with the samples after the refused one, until the burst takes
+/// the rest. After each call the results, the propagators and the time bases must agree.
+fn burst_vs_one_at_a_time<T, I, A, B>(
+    (a, base_a): (&mut P<T, I, A>, &mut B),
+    (one, base_one): (&mut P<T, I, A>, &mut B),
+    chunk: &[B::Item],
+) where
+    T: Fz,
+    I: Model<T>,
+    A: Accumulator<T> + Debug + PartialEq,
+    B: TimeBase<T, I>,
+{
+    let mut rest = chunk;
+    loop {
+        let ra = base_a.burst(a, rest);
+        let rb = base_one.one_at_a_time(one, rest);
+        // Ok(n) against Ok(m) is decided by n == m; a refusal by its Debug text (its payload may be NaN:
+        // a step angle of 0·∞).
+        if !matches!((&ra, &rb), (Ok(n), Ok(m)) if n == m) {
+            assert_same_text(&ra, &rb, &"burst result: burst vs one at a time");
+        }
+        assert_same(a, one);
+        // Debug text: a time base whose arithmetic overflowed (a period near T::MAX) carries NaN.
+        assert_same_text(base_a, base_one, &B::WHAT);
+        match ra {
+            Ok(n) => {
+                assert_eq!(n, rest.len());
+                break;
+            }
+            Err(r) => rest = &rest[r.index + 1..],
+        }
+    }
+}
+
 fn fixed<T: Fz, I: Model<T>, A: Accumulator<T> + Debug + PartialEq>(
     b: &mut Bytes<'_>,
     p: P<T, I, A>,
@@ -107,34 +208,7 @@ fn fixed<T: Fz, I: Model<T>, A: Accumulator<T> + Debug + PartialEq>(
         }
         let len = b.below(17);
         let chunk: Vec<I::Sample> = (0..len).map(|_| sample::<T, I>(b, delta)).collect();
-        let mut rest = &chunk[..];
-        loop {
-            let ra = a.push_burst(rest, &mut pa);
-            let mut rb = Ok(rest.len());
-            for (index, s) in rest.iter().enumerate() {
-                let dt = pb.next_dt();
-                if let Err(error) = one.push(*s, dt) {
-                    pb.carry_over(dt);
-                    rb = Err(Refused { index, error });
-                    break;
-                }
-            }
-            // Debug text: a refused step's payload may be NaN (a step angle of 0·∞), equal as text.
-            // Ok(n) against Ok(m) is decided by n == m; a refusal by its Debug text (its payload may be NaN).
-            if !matches!((&ra, &rb), (Ok(n), Ok(m)) if n == m) {
-                assert_same_text(&ra, &rb, &"burst result: burst vs one at a time");
-            }
-            assert_same(&a, &one);
-            // Debug text: a time base whose arithmetic overflowed (a period near T::MAX) carries NaN.
-            assert_same_text(&pa, &pb, &"fixed period: burst vs one at a time");
-            match ra {
-                Ok(n) => {
-                    assert_eq!(n, rest.len());
-                    break;
-                }
-                Err(r) => rest = &rest[r.index + 1..],
-            }
-        }
+        burst_vs_one_at_a_time((&mut a, &mut pa), (&mut one, &mut pb), &chunk);
     }
 }
 
@@ -174,24 +248,7 @@ fn timed_bursts<T: Fz, I: Model<T>, A: Accumulator<T> + Debug + PartialEq>(
             };
             chunk.push((sample::<T, I>(b, delta), t));
         }
-        let mut rest = &chunk[..];
-        loop {
-            let ra = a.push_burst_timed(rest, &mut ca);
-            let rb = one_at_a_time(&mut one, &mut cb, rest);
-            // Ok(n) against Ok(m) is decided by n == m; a refusal by its Debug text (its payload may be NaN).
-            if !matches!((&ra, &rb), (Ok(n), Ok(m)) if n == m) {
-                assert_same_text(&ra, &rb, &"burst result: burst vs one at a time");
-            }
-            assert_same(&a, &one);
-            assert_same_text(&ca, &cb, &"tick clock: burst vs one at a time");
-            match ra {
-                Ok(n) => {
-                    assert_eq!(n, rest.len());
-                    break;
-                }
-                Err(r) => rest = &rest[r.index + 1..],
-            }
-        }
+        burst_vs_one_at_a_time((&mut a, &mut ca), (&mut one, &mut cb), &chunk);
     }
 }
 

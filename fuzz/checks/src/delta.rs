@@ -73,6 +73,8 @@ fn check<T: Fz>(b: &mut Bytes<'_>) {
     let mut pending: Vec<Vec3<T>> = Vec::new();
     let mut previous: Option<Vec3<T>> = None;
     let mut last_dt = T::from_f64(1e-3);
+    // Up to 128 rounds while bytes remain, a restart now and then: the loop every target opens alike (the
+    // `burst` target's timed one too), each with its own state to restart.
     for _ in 0..128 {
         if b.is_empty() {
             break;

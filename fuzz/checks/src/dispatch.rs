@@ -20,13 +20,7 @@ use std::fmt::Debug;
 
 /// Decodes and checks one input.
 pub fn run(data: &[u8]) {
-    let mut b = Bytes::new(data);
-    let which = b.below(3);
-    if b.bool() {
-        check::<f32>(&mut b, which)
-    } else {
-        check::<f64>(&mut b, which)
-    }
+    crate::by_check_and_precision(data, 3, check::<f32>, check::<f64>)
 }
 
 fn check<T: Fz>(b: &mut Bytes<'_>, which: usize) {
@@ -44,6 +38,8 @@ fn check<T: Fz>(b: &mut Bytes<'_>, which: usize) {
                     with_input(b, input, q0, ($kind, z), ($ty, z))
                 }};
             }
+            // Spelled out per kind, as the coning table below: each arm names a run-time kind's own type,
+            // which only a match can pick from the index.
             match b.below(8) {
                 0 => pair!(SchemeKind::Euler, Euler),
                 1 => pair!(SchemeKind::Rk2, Rk2),

@@ -63,13 +63,7 @@ use quatprop::{Error, GyroSample, Quat, Real, Vec3};
 
 /// Decodes and checks one input.
 pub fn run(data: &[u8]) {
-    let mut b = Bytes::new(data);
-    let which = b.below(7);
-    if b.bool() {
-        check::<f32>(&mut b, which)
-    } else {
-        check::<f64>(&mut b, which)
-    }
+    crate::by_check_and_precision(data, 7, check::<f32>, check::<f64>)
 }
 
 fn check<T: Fz>(b: &mut Bytes<'_>, which: usize) {
@@ -778,30 +772,50 @@ fn option<T: Fz>(
     }
 }
 
+/// A drift option (`with_drift` or `with_rest_drift`, named `what`) set on half the inputs to a value of
+/// `scales`: valid when non-negative with a finite square. Returns the drift in force: the value set if it
+/// was accepted, else `default`.
+fn drift_option<T: Fz>(
+    b: &mut Bytes<'_>,
+    est: &mut BiasEstimator<T>,
+    (set, what): (DriftSetter<T>, &str),
+    default: f64,
+    scales: [f64; 4],
+) -> T {
+    if b.bool() {
+        let d: T = b.real(scales);
+        let valid = d >= T::ZERO && (d * d).is_finite();
+        let r = set(*est, d);
+        if option(est, r, valid, Error::InvalidEstimator, what) {
+            return d;
+        }
+    }
+    T::from_f64(default)
+}
+
+/// `BiasEstimator::with_drift` or `BiasEstimator::with_rest_drift`.
+type DriftSetter<T> = fn(BiasEstimator<T>, T) -> Result<BiasEstimator<T>, Error>;
+
 fn bias_estimator<T: Fz>(b: &mut Bytes<'_>) {
     let Some((mut est, window, period, gate)) = estimator_config::<T>(b) else {
         return;
     };
     let period_t = T::from_f64(period);
     let positive = |x: T| x > T::ZERO && x.is_finite();
-    let mut drift = T::from_f64(BiasEstimator::<T>::DEFAULT_DRIFT);
-    if b.bool() {
-        let d: T = b.real([1e-5, 1e-3, 0.1, 1e3]);
-        let valid = d >= T::ZERO && (d * d).is_finite();
-        let r = est.with_drift(d);
-        if option(&mut est, r, valid, Error::InvalidEstimator, "drift") {
-            drift = d;
-        }
-    }
-    let mut rest_drift = T::from_f64(BiasEstimator::<T>::DEFAULT_REST_DRIFT);
-    if b.bool() {
-        let d: T = b.real([1e-6, 1e-4, 0.1, 1e3]);
-        let valid = d >= T::ZERO && (d * d).is_finite();
-        let r = est.with_rest_drift(d);
-        if option(&mut est, r, valid, Error::InvalidEstimator, "rest drift") {
-            rest_drift = d;
-        }
-    }
+    let drift = drift_option(
+        b,
+        &mut est,
+        (BiasEstimator::with_drift, "drift"),
+        BiasEstimator::<T>::DEFAULT_DRIFT,
+        [1e-5, 1e-3, 0.1, 1e3],
+    );
+    let rest_drift = drift_option(
+        b,
+        &mut est,
+        (BiasEstimator::with_rest_drift, "rest drift"),
+        BiasEstimator::<T>::DEFAULT_REST_DRIFT,
+        [1e-6, 1e-4, 0.1, 1e3],
+    );
     let mut measurement = {
         let s = gate * T::from_f64(1.0 / 8192.0);
         let f = s * s;

@@ -220,6 +220,24 @@ pub fn by_precision(data: &[u8], f32: fn(&mut Bytes<'_>), f64: fn(&mut Bytes<'_>
     }
 }
 
+/// One input's first choice, which of `checks` checks to run (passed on as `which`), then its precision
+/// (`true`: f32), then the rest of it to that check in `f32` or `f64`. The start of every target that
+/// groups several checks, each covering both precisions the same way.
+pub fn by_check_and_precision(
+    data: &[u8],
+    checks: usize,
+    f32: fn(&mut Bytes<'_>, usize),
+    f64: fn(&mut Bytes<'_>, usize),
+) {
+    let mut b = Bytes::new(data);
+    let which = b.below(checks);
+    if b.bool() {
+        f32(&mut b, which)
+    } else {
+        f64(&mut b, which)
+    }
+}
+
 /// The bit patterns of a quaternion's components.
 pub fn quat_bits<T: Fz>(q: Quat<T>) -> [u64; 4] {
     [q.w.bits(), q.x.bits(), q.y.bits(), q.z.bits()]

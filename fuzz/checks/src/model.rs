@@ -185,53 +185,26 @@ impl Schedule {
     }
 }
 
-fn gyro<T>(v: Vec3<T>, saturated: bool) -> GyroSample<T> {
-    GyroSample { rate: v, saturated }
+/// [`Model`] for the models fed rates (a [`GyroSample`] per push), each with its schedule's kind.
+macro_rules! rate_models {
+    ($($model:ty => $kind:expr),* $(,)?) => {$(
+        impl<T: Fz> Model<T> for $model {
+            fn sample(rate: Vec3<T>, saturated: bool) -> GyroSample<T> {
+                GyroSample { rate, saturated }
+            }
+            fn schedule(&self) -> Schedule {
+                Schedule::new($kind)
+            }
+        }
+    )*};
 }
 
-impl<T: Fz> Model<T> for Hold {
-    fn sample(v: Vec3<T>, saturated: bool) -> GyroSample<T> {
-        gyro(v, saturated)
-    }
-    fn schedule(&self) -> Schedule {
-        Schedule::new(Kind::Hold)
-    }
-}
-
-impl<T: Fz> Model<T> for Linear<T> {
-    fn sample(v: Vec3<T>, saturated: bool) -> GyroSample<T> {
-        gyro(v, saturated)
-    }
-    fn schedule(&self) -> Schedule {
-        Schedule::new(Kind::Linear)
-    }
-}
-
-impl<T: Fz> Model<T> for History<T> {
-    fn sample(v: Vec3<T>, saturated: bool) -> GyroSample<T> {
-        gyro(v, saturated)
-    }
-    fn schedule(&self) -> Schedule {
-        Schedule::new(Kind::History)
-    }
-}
-
-impl<T: Fz> Model<T> for TwiceRate<T> {
-    fn sample(v: Vec3<T>, saturated: bool) -> GyroSample<T> {
-        gyro(v, saturated)
-    }
-    fn schedule(&self) -> Schedule {
-        Schedule::new(Kind::TwiceRate)
-    }
-}
-
-impl<T: Fz> Model<T> for GaussPoints<T> {
-    fn sample(v: Vec3<T>, saturated: bool) -> GyroSample<T> {
-        gyro(v, saturated)
-    }
-    fn schedule(&self) -> Schedule {
-        Schedule::new(Kind::Gauss)
-    }
+rate_models! {
+    Hold => Kind::Hold,
+    Linear<T> => Kind::Linear,
+    History<T> => Kind::History,
+    TwiceRate<T> => Kind::TwiceRate,
+    GaussPoints<T> => Kind::Gauss,
 }
 
 impl<T: Fz, C: ConingCorrection + PartialEq + core::fmt::Debug> Model<T> for DeltaAngles<T, C> {
