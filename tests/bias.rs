@@ -596,28 +596,21 @@ fn fuzz_findings_on_the_accelerometer_and_the_drift() {
         let mut e = BiasEstimator::<f64>::from_samples(window, 1e-3, 0.05).unwrap();
         let mut noise = Noise(41);
         let n = |noise: &mut Noise| Vec3::new(noise.next(), noise.next(), noise.next()) * 1e-4;
+        // One sample: the gyro's noise alone (the body does not turn), the accelerometer reading `accel`.
+        let update = |e: &mut BiasEstimator<f64>, noise: &mut Noise, accel: Vec3<f64>| {
+            let aux = Aux {
+                accel: Some(accel),
+                ..Aux::NONE
+            };
+            e.update_with(GyroSample::new(n(noise)), aux).unwrap();
+        };
         for _ in 0..20 * window {
-            let a = Some(Vec3::new(0.0, 0.0, 9.81) + n(&mut noise) * 100.0);
-            e.update_with(
-                GyroSample::new(n(&mut noise)),
-                Aux {
-                    accel: a,
-                    temperature: None,
-                },
-            )
-            .unwrap();
+            let a = Vec3::new(0.0, 0.0, 9.81) + n(&mut noise) * 100.0;
+            update(&mut e, &mut noise, a);
         }
         let learned = e.last_window().unwrap().0;
         for k in 0..window {
-            let a = Some(Vec3::new(0.5 * k as f64, 0.0, 9.81));
-            e.update_with(
-                GyroSample::new(n(&mut noise)),
-                Aux {
-                    accel: a,
-                    temperature: None,
-                },
-            )
-            .unwrap();
+            update(&mut e, &mut noise, Vec3::new(0.5 * k as f64, 0.0, 9.81));
         }
         assert_eq!(e.last_window().unwrap().0, learned, "window {window}");
     }
