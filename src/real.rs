@@ -123,26 +123,29 @@ pub trait Real:
     fn is_finite(self) -> bool;
 }
 
+/// Trait methods that pass `self` (and further arguments of type `Self`) to a per-precision function and
+/// return its value: `fn sqrt(self) => libm::sqrtf;` is `fn sqrt(self) -> Self { libm::sqrtf(self) }`.
+macro_rules! forward {
+    ($(fn $name:ident(self $(, $arg:ident)*) => $f:path;)*) => {
+        $(
+            #[inline(always)]
+            fn $name(self $(, $arg: Self)*) -> Self {
+                $f(self $(, $arg)*)
+            }
+        )*
+    };
+}
+
 macro_rules! impl_real {
     ($t:ty, $abs:path, $sqrt:path, $sqrt_step:path, $sin:path, $sin_step:path, $cos:path, $exp:path, $atan2:path, $hypot:path, $conv_atan2:path, $sum_sq:path, $taylor:expr, $hw:expr) => {
         impl sealed::Float for $t {
             const EXP_TAYLOR_MAX_SQ: Self = $taylor;
             const HARDWARE_FLOAT: bool = $hw;
-            #[inline(always)]
-            fn exp(self) -> Self {
-                $exp(self)
-            }
-            #[inline(always)]
-            fn sin_step(self) -> Self {
-                $sin_step(self)
-            }
-            #[inline(always)]
-            fn sqrt_step(self) -> Self {
-                $sqrt_step(self)
-            }
-            #[inline(always)]
-            fn hypot(self, y: Self) -> Self {
-                $hypot(self, y)
+            forward! {
+                fn exp(self) => $exp;
+                fn sin_step(self) => $sin_step;
+                fn sqrt_step(self) => $sqrt_step;
+                fn hypot(self, y) => $hypot;
             }
             #[inline(always)]
             fn max(self, other: Self) -> Self {
@@ -211,21 +214,11 @@ macro_rules! impl_real {
             fn to_f64(self) -> f64 {
                 self as f64
             }
-            #[inline(always)]
-            fn sqrt(self) -> Self {
-                $sqrt(self)
-            }
-            #[inline(always)]
-            fn sin(self) -> Self {
-                $sin(self)
-            }
-            #[inline(always)]
-            fn cos(self) -> Self {
-                $cos(self)
-            }
-            #[inline(always)]
-            fn atan2(self, x: Self) -> Self {
-                $atan2(self, x)
+            forward! {
+                fn sqrt(self) => $sqrt;
+                fn sin(self) => $sin;
+                fn cos(self) => $cos;
+                fn atan2(self, x) => $atan2;
             }
             #[inline(always)]
             fn abs(self) -> Self {

@@ -288,6 +288,19 @@ fn zip<T: Real>(a: Vec3<T>, b: Vec3<T>, f: impl Fn(T, T) -> T) -> Vec3<T> {
     Vec3::new(f(a.x, b.x), f(a.y, b.y), f(a.z, b.z))
 }
 
+/// `a / (a + b)` per axis: `a`'s share of two variances (a Kalman gain, the weight of the other
+/// estimate), ½ where both are zero.
+fn share<T: Real>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
+    zip(a, b, |a, b| {
+        let s = a + b;
+        if s > T::ZERO {
+            a / s
+        } else {
+            T::HALF
+        }
+    })
+}
+
 /// `d² > 25 v` on some axis: `d` disagrees with zero beyond five standard deviations (`v`: its variance).
 fn disagrees<T: Real>(d: Vec3<T>, v: Vec3<T>) -> bool {
     let k2 = T::from_i32(25);
@@ -1038,14 +1051,7 @@ impl<T: Real> BiasEstimator<T> {
 
     /// The Kalman filter's update with a still window that agrees with the estimate.
     fn update_estimate(&mut self, m: &Measurement<T>, innovation: Vec3<T>) {
-        let gain = zip(self.variance, m.variance, |p, r| {
-            let s = p + r;
-            if s > T::ZERO {
-                p / s
-            } else {
-                T::HALF
-            }
-        });
+        let gain = share(self.variance, m.variance);
         self.bias += zip(gain, innovation, |k, v| k * v);
         self.variance = zip(gain, self.variance, |k, p| (T::ONE - k) * p);
         self.taken = Some(*m);
@@ -1063,14 +1069,7 @@ impl<T: Real> BiasEstimator<T> {
         self.last = Last::AtEstimate;
         match c {
             Some(c) => {
-                let w = zip(c.variance, m.variance, |a, b| {
-                    let s = a + b;
-                    if s > T::ZERO {
-                        a / s
-                    } else {
-                        T::HALF
-                    }
-                });
+                let w = share(c.variance, m.variance);
                 // The weight of m is c's share of the variance.
                 self.bias = c.bias + zip(w, m.bias - c.bias, |k, d| k * d);
                 self.variance = zip(w, c.variance, |k, v| (T::ONE - k) * v);

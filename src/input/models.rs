@@ -114,7 +114,7 @@ impl<T: Real> InputModel<T> for Linear<T> {
     ) -> Result<(Self, Option<(LinearRate<T>, T)>), Error> {
         let w = finite_rate(sample)?;
         let next = Self { previous: Some(w) };
-        Ok((next, self.previous.map(|w0| (LinearRate { w0, w1: w }, dt))))
+        Ok((next, self.previous.map(|w0| (LinearRate::new(w0, w), dt))))
     }
     #[inline(always)]
     fn start(&self, sample: &GyroSample<T>) -> Result<Self, Error> {
@@ -468,7 +468,7 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
                 },
                 None,
             ),
-            Some((w1, dt1)) => (Self::new(), Some((GaussRates { w1, w2: w }, dt1 + dt))),
+            Some((w1, dt1)) => (Self::new(), Some((GaussRates::new(w1, w), dt1 + dt))),
         })
     }
     #[inline(always)]

@@ -7,6 +7,7 @@ use super::Segment;
 use crate::exact::{two_product_vec, two_sum_vec};
 use crate::gauss;
 use crate::{Real, Vec3};
+use core::marker::PhantomData;
 
 /// `(a + b)·k` as `hi + lo`: the sum's and the product's roundings kept (the rounding of `lo` itself and
 /// of `e·k` aside).
@@ -44,43 +45,105 @@ impl<T: Real> Segment<T> for HeldRate<T> {
     }
 }
 
-/// ω linear from `w0` at the start to `w1` at the end of the step.
+/// ω linear in time through its values at two nodes of the step (fractions of it, symmetric about ½):
+/// `first` at [`Nodes::FIRST`], `second` at [`Nodes::SECOND`], linear between and beyond them. Both
+/// [`LinearRate`] (the step's ends) and [`GaussRates`] (its Gauss–Legendre nodes) are this segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LinearRate<T> {
-    pub(crate) w0: Vec3<T>,
-    pub(crate) w1: Vec3<T>,
+pub struct TwoNodeRate<T, N> {
+    pub(crate) first: Vec3<T>,
+    pub(crate) second: Vec3<T>,
+    nodes: PhantomData<N>,
 }
 
-impl<T: Real> Segment<T> for LinearRate<T> {
+impl<T, N> TwoNodeRate<T, N> {
+    /// The rates at the first and the second node (rad/s).
     #[inline(always)]
-    fn rate_at(&self, c: f64) -> Vec3<T> {
-        if c == 0.0 {
-            self.w0
-        } else if c == 1.0 {
-            self.w1
-        } else {
-            self.w0 + (self.w1 - self.w0) * T::from_f64(c)
+    pub(crate) const fn new(first: Vec3<T>, second: Vec3<T>) -> Self {
+        Self {
+            first,
+            second,
+            nodes: PhantomData,
         }
     }
-    /// Trapezoid: `½∫ω = (hh/2)(ω₀ + ω₁)`.
+}
+
+impl<T: Real, N: Nodes> TwoNodeRate<T, N> {
+    /// `segment`'s rates at the two nodes: the linear rate through them.
+    #[inline(always)]
+    pub(crate) fn sampled<G: Segment<T>>(segment: &G) -> Self {
+        Self::new(segment.rate_at(N::FIRST), segment.rate_at(N::SECOND))
+    }
+}
+
+/// Where a [`TwoNodeRate`]'s two values sit in the step (fractions of it, symmetric about ½).
+pub trait Nodes: Copy {
+    /// The first node.
+    const FIRST: f64;
+    /// The second node.
+    const SECOND: f64;
+    /// `1/(SECOND − FIRST)`: turns the difference of the two node values into a slope per unit step.
+    const INV_GAP: f64;
+}
+
+/// The step's start and end: `ω` linear from its value at the start to its value at the end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ends;
+
+impl Nodes for Ends {
+    const FIRST: f64 = 0.0;
+    const SECOND: f64 = 1.0;
+    const INV_GAP: f64 = 1.0;
+}
+
+/// The two Gauss–Legendre nodes of the step, `½ ∓ √3/6`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GaussNodes;
+
+impl Nodes for GaussNodes {
+    const FIRST: f64 = gauss::NODE_1;
+    const SECOND: f64 = gauss::NODE_2;
+    const INV_GAP: f64 = gauss::INV_GAP;
+}
+
+/// ω linear from its value at the start to its value at the end of the step.
+pub type LinearRate<T> = TwoNodeRate<T, Ends>;
+
+/// Rates at the two Gauss–Legendre nodes of the step; linear between (and beyond) them.
+pub type GaussRates<T> = TwoNodeRate<T, GaussNodes>;
+
+impl<T: Real, N: Nodes> Segment<T> for TwoNodeRate<T, N> {
+    #[inline(always)]
+    fn rate_at(&self, c: f64) -> Vec3<T> {
+        if c == N::FIRST {
+            self.first
+        } else if c == N::SECOND {
+            self.second
+        } else {
+            let f = (c - N::FIRST) * N::INV_GAP;
+            self.first + (self.second - self.first) * T::from_f64(f)
+        }
+    }
+    /// The two-node rule (the trapezoid at the ends, the Gauss rule at the Gauss nodes), exact for a
+    /// linear rate: `½∫ω = (hh/2)(ω₁ + ω₂)`.
     #[inline(always)]
     fn half_angle(&self, hh: T) -> Vec3<T> {
-        (self.w0 + self.w1) * (hh * T::HALF)
+        (self.first + self.second) * (hh * T::HALF)
     }
     #[inline(always)]
     fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
-        sum_times_split(self.w0, self.w1, hh * T::HALF)
+        sum_times_split(self.first, self.second, hh * T::HALF)
     }
-    /// `ω(½) × (ω₁ − ω₀) = ω₀ × ω₁` exactly for a linear rate.
+    /// `ω(½) × ω'(½) = ½(ω₁ + ω₂) × (ω₂ − ω₁)/gap = ω₁ × ω₂ / gap` exactly for a linear rate (`gap` 1
+    /// at the ends, `1/√3` at the Gauss nodes).
     #[inline(always)]
     fn rate_commutator(&self) -> Option<Vec3<T>> {
-        Some(self.w0.cross(self.w1))
+        Some(self.first.cross(self.second) * T::from_f64(N::INV_GAP))
     }
     #[inline(always)]
     fn max_step_angle_squared(&self, h: T) -> T {
-        (self.w0 * h)
+        (self.first * h)
             .norm_squared()
-            .max((self.w1 * h).norm_squared())
+            .max((self.second * h).norm_squared())
     }
 }
 
@@ -348,47 +411,6 @@ impl<T: Real> Segment<T> for HistoryRate<T> {
             HistoryRate::Uniform { ends, .. } | HistoryRate::Newton { ends, .. } => *ends,
         };
         (w2 * h).norm_squared().max((w3 * h).norm_squared())
-    }
-}
-
-/// Rates at the two Gauss–Legendre nodes of the step; linear between (and beyond) them.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GaussRates<T> {
-    pub(crate) w1: Vec3<T>,
-    pub(crate) w2: Vec3<T>,
-}
-
-impl<T: Real> Segment<T> for GaussRates<T> {
-    #[inline(always)]
-    fn rate_at(&self, c: f64) -> Vec3<T> {
-        if c == gauss::NODE_1 {
-            self.w1
-        } else if c == gauss::NODE_2 {
-            self.w2
-        } else {
-            let f = (c - gauss::NODE_1) * gauss::INV_GAP;
-            self.w1 + (self.w2 - self.w1) * T::from_f64(f)
-        }
-    }
-    /// The Gauss rule: `½∫ω = (hh/2)(ω₁ + ω₂)`.
-    #[inline(always)]
-    fn half_angle(&self, hh: T) -> Vec3<T> {
-        (self.w1 + self.w2) * (hh * T::HALF)
-    }
-    #[inline(always)]
-    fn half_angle_split(&self, hh: T) -> (Vec3<T>, Vec3<T>) {
-        sum_times_split(self.w1, self.w2, hh * T::HALF)
-    }
-    /// `ω(½) × ω'(½) = ½(ω₁ + ω₂) × √3(ω₂ − ω₁) = √3 ω₁ × ω₂` exactly for the linear interpolant.
-    #[inline(always)]
-    fn rate_commutator(&self) -> Option<Vec3<T>> {
-        Some(self.w1.cross(self.w2) * T::from_f64(gauss::INV_GAP))
-    }
-    #[inline(always)]
-    fn max_step_angle_squared(&self, h: T) -> T {
-        (self.w1 * h)
-            .norm_squared()
-            .max((self.w2 * h).norm_squared())
     }
 }
 

@@ -127,18 +127,12 @@ impl<T: Real> Scheme<T> for Magnus4 {
     }
     #[inline(always)]
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
-        let at_nodes = GaussRates {
-            w1: segment.rate_at(gauss::NODE_1),
-            w2: segment.rate_at(gauss::NODE_2),
-        };
+        let at_nodes = GaussRates::sampled(segment);
         ExpMap.increment(q, &at_nodes, h)
     }
     #[inline(always)]
     fn right_factor<G: Segment<T>>(&self, segment: &G, h: T) -> (Quat<T>, Quat<T>) {
-        let at_nodes = GaussRates {
-            w1: segment.rate_at(gauss::NODE_1),
-            w2: segment.rate_at(gauss::NODE_2),
-        };
+        let at_nodes = GaussRates::sampled(segment);
         ExpMap.right_factor(&at_nodes, h)
     }
 }
