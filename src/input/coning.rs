@@ -110,82 +110,17 @@ fn compressed_split<T: Real>(increments: &[Vec3<T>], k: &[f64], den: f64) -> (Ve
     (hi, e + r)
 }
 
-/// No correction: `φ = Δθ`, one increment per update (the coning drift of the table above).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Uncorrected;
-
-impl ConingCorrection for Uncorrected {
-    fn name(&self) -> &'static str {
-        "Uncorrected"
-    }
-    fn samples(&self) -> usize {
-        1
-    }
-    #[inline]
-    fn rotation_vector<T: Real>(
-        &self,
-        _previous: Option<Vec3<T>>,
-        increments: &[Vec3<T>],
-    ) -> Vec3<T> {
-        sum(increments)
-    }
-    #[inline(always)]
-    fn rotation_vector_split<T: Real>(
-        &self,
-        _previous: Option<Vec3<T>>,
-        increments: &[Vec3<T>],
-    ) -> (Vec3<T>, Vec3<T>) {
-        sum_split(increments)
-    }
-}
-
-/// One increment per update plus the previous update's: `φ = Δθ_k + (1/12) Δθ_{k−1} × Δθ_k`
-/// (PX4, KF-GINS). The first update, with no previous increment, is uncorrected.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct OnePlusPrevious;
-
-impl ConingCorrection for OnePlusPrevious {
-    fn name(&self) -> &'static str {
-        "OnePlusPrevious"
-    }
-    fn samples(&self) -> usize {
-        1
-    }
-    #[inline]
-    fn rotation_vector<T: Real>(
-        &self,
-        previous: Option<Vec3<T>>,
-        increments: &[Vec3<T>],
-    ) -> Vec3<T> {
-        let Some(&d) = increments.first() else {
-            return Vec3::ZERO;
-        };
-        match previous {
-            Some(p) => d + p.cross(d) * T::from_f64(1.0 / 12.0),
-            None => d,
-        }
-    }
-    #[inline(always)]
-    fn rotation_vector_split<T: Real>(
-        &self,
-        previous: Option<Vec3<T>>,
-        increments: &[Vec3<T>],
-    ) -> (Vec3<T>, Vec3<T>) {
-        let Some(&d) = increments.first() else {
-            return (Vec3::ZERO, Vec3::ZERO);
-        };
-        match previous {
-            Some(p) => two_sum_vec(d, p.cross(d) * T::from_f64(1.0 / 12.0)),
-            None => (d, Vec3::ZERO),
-        }
-    }
-}
-
-macro_rules! n_sample {
-    ($name:ident, $n:expr, $den:expr, [$($k:expr),*], $doc:expr) => {
-        #[doc = $doc]
+/// A coning correction's type, written once for all six: the unit struct (with the doc comments given) and
+/// its [`ConingCorrection`] impl from the increments it takes and its two bodies, `rotation_vector` and
+/// `rotation_vector_split`, over the names given for the previous update's increment and this update's.
+macro_rules! correction {
+    (
+        $(#[doc = $doc:expr])*
+        $name:ident, samples: $n:expr,
+        |$previous:pat_param, $increments:ident| $value:expr,
+        split: $split:expr $(,)?
+    ) => {
+        $(#[doc = $doc])*
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         #[cfg_attr(feature = "defmt", derive(defmt::Format))]
         pub struct $name;
@@ -198,44 +133,66 @@ macro_rules! n_sample {
                 $n
             }
             #[inline]
-            fn rotation_vector<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> Vec3<T> {
-                compressed(increments, &[$($k),*], $den)
+            fn rotation_vector<T: Real>(&self, $previous: Option<Vec3<T>>, $increments: &[Vec3<T>]) -> Vec3<T> {
+                $value
             }
             #[inline(always)]
-            fn rotation_vector_split<T: Real>(&self, _previous: Option<Vec3<T>>, increments: &[Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
-                compressed_split(increments, &[$($k),*], $den)
+            fn rotation_vector_split<T: Real>(&self, $previous: Option<Vec3<T>>, $increments: &[Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
+                $split
             }
         }
     };
 }
 
-n_sample!(
-    TwoSample,
-    2,
-    3.0,
-    [2.0],
-    "Two increments per update: `φ = Δθ₁ + Δθ₂ + (2/3) Δθ₁ × Δθ₂`."
+correction!(
+    /// No correction: `φ = Δθ`, one increment per update (the coning drift of the table above).
+    Uncorrected, samples: 1,
+    |_previous, increments| sum(increments),
+    split: sum_split(increments),
 );
-n_sample!(
-    ThreeSample,
-    3,
-    20.0,
-    [9.0, 27.0],
-    "Three increments per update, coning-optimal: `φ = ΣΔθ + (9/20 Δθ₁ + 27/20 Δθ₂) × Δθ₃`."
+
+correction!(
+    /// One increment per update plus the previous update's: `φ = Δθ_k + (1/12) Δθ_{k−1} × Δθ_k`
+    /// (PX4, KF-GINS). The first update, with no previous increment, is uncorrected.
+    OnePlusPrevious, samples: 1,
+    |previous, increments| match (increments.first(), previous) {
+        (None, _) => Vec3::ZERO,
+        (Some(&d), Some(p)) => d + p.cross(d) * T::from_f64(1.0 / 12.0),
+        (Some(&d), None) => d,
+    },
+    split: match (increments.first(), previous) {
+        (None, _) => (Vec3::ZERO, Vec3::ZERO),
+        (Some(&d), Some(p)) => two_sum_vec(d, p.cross(d) * T::from_f64(1.0 / 12.0)),
+        (Some(&d), None) => (d, Vec3::ZERO),
+    },
 );
-n_sample!(
-    FourSample,
-    4,
-    105.0,
-    [54.0, 92.0, 214.0],
-    "Four increments per update: `φ = ΣΔθ + (54 Δθ₁ + 92 Δθ₂ + 214 Δθ₃)/105 × Δθ₄`."
+
+correction!(
+    /// Two increments per update: `φ = Δθ₁ + Δθ₂ + (2/3) Δθ₁ × Δθ₂`.
+    TwoSample, samples: 2,
+    |_previous, increments| compressed(increments, &[2.0], 3.0),
+    split: compressed_split(increments, &[2.0], 3.0),
 );
-n_sample!(
-    FiveSample,
-    5,
-    504.0,
-    [250.0, 525.0, 650.0, 1375.0],
-    "Five increments per update: `φ = ΣΔθ + (250 Δθ₁ + 525 Δθ₂ + 650 Δθ₃ + 1375 Δθ₄)/504 × Δθ₅`."
+
+correction!(
+    /// Three increments per update, coning-optimal: `φ = ΣΔθ + (9/20 Δθ₁ + 27/20 Δθ₂) × Δθ₃`.
+    ThreeSample, samples: 3,
+    |_previous, increments| compressed(increments, &[9.0, 27.0], 20.0),
+    split: compressed_split(increments, &[9.0, 27.0], 20.0),
+);
+
+correction!(
+    /// Four increments per update: `φ = ΣΔθ + (54 Δθ₁ + 92 Δθ₂ + 214 Δθ₃)/105 × Δθ₄`.
+    FourSample, samples: 4,
+    |_previous, increments| compressed(increments, &[54.0, 92.0, 214.0], 105.0),
+    split: compressed_split(increments, &[54.0, 92.0, 214.0], 105.0),
+);
+
+correction!(
+    /// Five increments per update: `φ = ΣΔθ + (250 Δθ₁ + 525 Δθ₂ + 650 Δθ₃ + 1375 Δθ₄)/504 × Δθ₅`.
+    FiveSample, samples: 5,
+    |_previous, increments| compressed(increments, &[250.0, 525.0, 650.0, 1375.0], 504.0),
+    split: compressed_split(increments, &[250.0, 525.0, 650.0, 1375.0], 504.0),
 );
 
 /// Any coning correction, chosen at run time (the host lab's way; firmware names one type instead).

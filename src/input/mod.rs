@@ -120,6 +120,10 @@ pub trait Segment<T: Real> {
     fn max_step_angle_squared(&self, h: T) -> T;
 }
 
+/// What [`InputModel::accept`] returns: the model's next state `M` and, if the sample closes a step, the
+/// step's segment `G` and length `h` (s); or why the sample was refused.
+pub type Accepted<M, G, T> = Result<(M, Option<(G, T)>), Error>;
+
 /// What the propagator knows of ω between samples, and the state that carries across steps.
 ///
 /// Implementations are small and `Copy`. [`InputModel::accept`] does not change the model: it returns the
@@ -137,12 +141,7 @@ pub trait InputModel<T: Real>: Copy {
     ///
     /// # Errors
     /// [`Error::NonFiniteRate`] if the sample has a NaN or infinite component.
-    #[allow(clippy::type_complexity)]
-    fn accept(
-        &self,
-        sample: &Self::Sample,
-        dt: T,
-    ) -> Result<(Self, Option<(Self::Segment, T)>), Error>;
+    fn accept(&self, sample: &Self::Sample, dt: T) -> Accepted<Self, Self::Segment, T>;
 
     /// [`InputModel::accept`] for an accumulator that carries low parts
     /// ([`crate::accumulate::Accumulator::CARRIES_LOW_PARTS`]): a model whose segment keeps a rounding that
@@ -153,13 +152,8 @@ pub trait InputModel<T: Real>: Copy {
     /// # Errors
     /// As [`InputModel::accept`].
     #[doc(hidden)]
-    #[allow(clippy::type_complexity)]
     #[inline(always)]
-    fn accept_split(
-        &self,
-        sample: &Self::Sample,
-        dt: T,
-    ) -> Result<(Self, Option<(Self::Segment, T)>), Error> {
+    fn accept_split(&self, sample: &Self::Sample, dt: T) -> Accepted<Self, Self::Segment, T> {
         self.accept(sample, dt)
     }
 

@@ -4,7 +4,7 @@ use super::coning::ConingCorrection;
 use super::segment::{
     GaussRates, HeldRate, HistoryRate, LinearRate, QuadraticRate, RotationVector,
 };
-use super::InputModel;
+use super::{Accepted, InputModel};
 use crate::vec3::all_finite;
 use crate::{DeltaAngle, Error, GyroSample, Real, Vec3};
 
@@ -56,11 +56,7 @@ impl<T: Real> InputModel<T> for Hold {
     type Sample = GyroSample<T>;
     type Segment = HeldRate<T>;
     #[inline(always)]
-    fn accept(
-        &self,
-        sample: &GyroSample<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(HeldRate<T>, T)>), Error> {
+    fn accept(&self, sample: &GyroSample<T>, dt: T) -> Accepted<Self, HeldRate<T>, T> {
         Ok((Hold, Some((HeldRate(finite_rate(sample)?), dt))))
     }
     #[inline(always)]
@@ -107,11 +103,7 @@ impl<T: Real> InputModel<T> for Linear<T> {
     type Sample = GyroSample<T>;
     type Segment = LinearRate<T>;
     #[inline(always)]
-    fn accept(
-        &self,
-        sample: &GyroSample<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(LinearRate<T>, T)>), Error> {
+    fn accept(&self, sample: &GyroSample<T>, dt: T) -> Accepted<Self, LinearRate<T>, T> {
         let w = finite_rate(sample)?;
         let next = Self { previous: Some(w) };
         Ok((next, self.previous.map(|w0| (LinearRate::new(w0, w), dt))))
@@ -234,11 +226,7 @@ impl<T: Real> InputModel<T> for History<T> {
     type Sample = GyroSample<T>;
     type Segment = HistoryRate<T>;
     #[inline(always)]
-    fn accept(
-        &self,
-        sample: &GyroSample<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(HistoryRate<T>, T)>), Error> {
+    fn accept(&self, sample: &GyroSample<T>, dt: T) -> Accepted<Self, HistoryRate<T>, T> {
         let w = finite_rate(sample)?;
         let [f, e] = self.dt;
         let c = self.w;
@@ -370,11 +358,7 @@ impl<T: Real> InputModel<T> for TwiceRate<T> {
     type Sample = GyroSample<T>;
     type Segment = QuadraticRate<T>;
     #[inline(always)]
-    fn accept(
-        &self,
-        sample: &GyroSample<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(QuadraticRate<T>, T)>), Error> {
+    fn accept(&self, sample: &GyroSample<T>, dt: T) -> Accepted<Self, QuadraticRate<T>, T> {
         let w = finite_rate(sample)?;
         Ok(match (self.start, self.middle) {
             (None, _) => (
@@ -455,11 +439,7 @@ impl<T: Real> InputModel<T> for GaussPoints<T> {
     type Sample = GyroSample<T>;
     type Segment = GaussRates<T>;
     #[inline(always)]
-    fn accept(
-        &self,
-        sample: &GyroSample<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(GaussRates<T>, T)>), Error> {
+    fn accept(&self, sample: &GyroSample<T>, dt: T) -> Accepted<Self, GaussRates<T>, T> {
         let w = finite_rate(sample)?;
         Ok(match self.first {
             None => (
@@ -545,13 +525,12 @@ impl<T: Real, C: ConingCorrection> DeltaAngles<T, C> {
 impl<T: Real, C: ConingCorrection> DeltaAngles<T, C> {
     /// [`InputModel::accept`] (`SPLIT` false) and [`InputModel::accept_split`] (`SPLIT` true: the rotation
     /// vector's rounding kept in the segment's low part).
-    #[allow(clippy::type_complexity)]
     #[inline(always)]
     fn accept_with<const SPLIT: bool>(
         &self,
         sample: &DeltaAngle<T>,
         dt: T,
-    ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
+    ) -> Accepted<Self, RotationVector<T>, T> {
         let d = sample.angle;
         if !all_finite(&[d]) {
             return Err(Error::NonFiniteRate);
@@ -590,19 +569,11 @@ impl<T: Real, C: ConingCorrection> InputModel<T> for DeltaAngles<T, C> {
     type Sample = DeltaAngle<T>;
     type Segment = RotationVector<T>;
     #[inline(always)]
-    fn accept(
-        &self,
-        sample: &DeltaAngle<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
+    fn accept(&self, sample: &DeltaAngle<T>, dt: T) -> Accepted<Self, RotationVector<T>, T> {
         self.accept_with::<false>(sample, dt)
     }
     #[inline(always)]
-    fn accept_split(
-        &self,
-        sample: &DeltaAngle<T>,
-        dt: T,
-    ) -> Result<(Self, Option<(RotationVector<T>, T)>), Error> {
+    fn accept_split(&self, sample: &DeltaAngle<T>, dt: T) -> Accepted<Self, RotationVector<T>, T> {
         self.accept_with::<true>(sample, dt)
     }
     /// A kept increment's own rotation: any update holding an increment beyond the scheme's bound
