@@ -7,8 +7,9 @@
 //! base: the inner loop is the code a Rust user writes with those types (the stabilizer and the coning
 //! correction are the core's run-time enums, [`StabilizerKind`] and [`ConingKind`]).
 //!
-//! Methods come in pairs, one per precision (`update_f32` / `update_f64`, …): pyo3 exports concrete
-//! signatures only, so each is written out, and each forwards to one generic function.
+//! A stream's methods take either precision and run one generic body on its session (`with_session!`);
+//! the module's functions come in pairs, one per precision (`calibrate_f32` / `calibrate_f64`, …): pyo3
+//! exports concrete signatures only, so a macro writes each pair from one body.
 
 // As in the core: `!(t > last)` is written so that a NaN lands in the error branch.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -18,6 +19,7 @@ use std::time::Instant;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::IntoPyObjectExt;
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
@@ -215,8 +217,7 @@ where
         } else {
             time.last_rate = Vec3::new(row[0], row[1], row[2]);
         }
-        let q = time.timing.ahead(p.attitude(), time.last_rate);
-        *o = [q.w, q.x, q.y, q.z];
+        *o = quat_row(time.timing.ahead(p.attitude(), time.last_rate));
     }
     *prop = local;
     result
@@ -233,6 +234,7 @@ struct Run<'a, 'b, T> {
     mask: Option<&'a mut [bool]>,
 }
 
+// Both of `Visit`'s methods, the same loop: the trait has one per sample type, each with its own bounds.
 impl<T: Real> Visit<T> for Run<'_, '_, T> {
     type Output = Result<(), Refused>;
     fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
@@ -349,12 +351,6 @@ impl<T: Real> Session<T> {
                 AccumulatorKind::Plain
             },
         };
-        let q0 = Quat::new(
-            T::from_f64(args.q0[0]),
-            T::from_f64(args.q0[1]),
-            T::from_f64(args.q0[2]),
-            T::from_f64(args.q0[3]),
-        );
         let clock = match (args.period, args.timestamps, args.tick_hz) {
             (Some(p), false, None) => Clock::Fixed(FixedPeriod::new(p).map_err(config_error)?),
             (None, true, None) => Clock::Seconds {
@@ -469,7 +465,7 @@ impl<T: Real> Session<T> {
             None => None,
         };
         Ok(Self {
-            p: config.build(q0).map_err(config_error)?,
+            p: config.build(quat(args.q0)).map_err(config_error)?,
             clock,
             scale,
             calibration,
@@ -482,6 +478,55 @@ impl<T: Real> Session<T> {
             timing,
             last_rate: Vec3::ZERO,
         })
+    }
+
+    /// The bias subtracted now (`NativeStream::bias`).
+    fn bias(&self) -> Option<[f64; 3]> {
+        let b = match (self.estimator, self.fixed) {
+            (Some(e), _) => e.bias() + self.motion.map_or(Vec3::ZERO, |m| m.bias()),
+            (None, Some(f)) => f.bias(),
+            (None, None) => return None,
+        };
+        Some(f64x3(b))
+    }
+
+    /// What the calibration estimator has learned (`NativeStream::learned_calibration`).
+    #[allow(clippy::type_complexity)]
+    fn learned_calibration(&self) -> Option<(CalibrationArgs, [[f64; 3]; 3], [[f64; 3]; 3])> {
+        let Some(Motion::Calibration(c)) = self.motion else {
+            return None;
+        };
+        let m = |m: [[T; 3]; 3]| m.map(|r| r.map(|x| x.to_f64()));
+        let cal = c.calibration();
+        Some((
+            (
+                f64x3(cal.offset()),
+                f64x3(cal.sensitivity()),
+                m(cal.misalignment()),
+            ),
+            m(c.gain()),
+            m(c.gain_std_dev()),
+        ))
+    }
+
+    /// The bias estimator's variance per axis (`NativeStream::bias_variance`).
+    fn bias_variance(&self) -> Option<[f64; 3]> {
+        let v = self.estimator?.variance();
+        let f = |x: T| if x == T::MAX { f64::MAX } else { x.to_f64() };
+        Some([f(v.x), f(v.y), f(v.z)])
+    }
+
+    /// An estimator's bias correction (`NativeStream::correct_bias`): both or neither.
+    fn correct_bias(&mut self, v: Vec3<T>) -> Result<(), Error> {
+        let mut next = *self;
+        match (&mut next.estimator, &mut next.fixed) {
+            (Some(e), _) => e.correct_bias(v)?,
+            (None, Some(f)) => f.correct_bias(v)?,
+            (None, None) => next.fixed = Some(FixedBias::new(v)?),
+        }
+        next.p.correct_bias(v)?;
+        *self = next;
+        Ok(())
     }
 
     /// Whether samples pass a front end (else they go to the propagator as they are).
@@ -625,7 +670,10 @@ enum Input<'a, T> {
     Counts(&'a [[i16; 3]], CountScale<T>),
 }
 
-/// The arguments of a stream as the Python layer passes them (validated there; checked again here).
+/// The arguments of a stream as the Python layer passes them, a dict by field name (validated there;
+/// checked again here).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
 struct StreamArgs {
     period: Option<f64>,
     timestamps: bool,
@@ -683,6 +731,17 @@ fn calibration<T: Real>(
         vec3(sensitivity),
         m.map(|row| row.map(T::from_f64)),
     )
+}
+
+/// `$body` with `$s` bound to the session in `$sessions` (a `Sessions`, by reference), whichever its
+/// precision: one body, compiled for each (a closure cannot be generic over the precision).
+macro_rules! with_session {
+    ($sessions:expr, $s:ident => $body:expr) => {
+        match $sessions {
+            Sessions::F32($s) => $body,
+            Sessions::F64($s) => $body,
+        }
+    };
 }
 
 /// A session in the precision the stream was made with.
@@ -841,56 +900,10 @@ fn quat4<T: Real>(q: Quat<T>) -> [f64; 4] {
 
 #[pymethods]
 impl NativeStream {
-    /// See `quatprop.Stream`; arguments already validated by the Python layer.
+    /// See `quatprop.Stream`: a stream in `precision` ("f32" or "f64") that flags refused samples
+    /// (`mask`) or raises on the first; `args` already validated by the Python layer.
     #[new]
-    #[pyo3(signature = (precision, period, timestamps, tick_hz, tick_bits, scheme, stabilizer, every, input,
-        coning, kahan, q0, mask, remap, matrix, bias, estimator, calibration, interval_mean, group_delay,
-        count_scale))]
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        precision: &str,
-        period: Option<f64>,
-        timestamps: bool,
-        tick_hz: Option<f64>,
-        tick_bits: u32,
-        scheme: String,
-        stabilizer: String,
-        every: u32,
-        input: String,
-        coning: String,
-        kahan: bool,
-        q0: [f64; 4],
-        mask: bool,
-        remap: Option<String>,
-        matrix: Option<[[f64; 3]; 3]>,
-        bias: Option<[f64; 3]>,
-        estimator: Option<EstimatorArgs>,
-        calibration: Option<CalibrationArgs>,
-        interval_mean: bool,
-        group_delay: f64,
-        count_scale: Option<(bool, f64)>,
-    ) -> PyResult<Self> {
-        let args = StreamArgs {
-            period,
-            timestamps,
-            tick_hz,
-            tick_bits,
-            scheme,
-            stabilizer,
-            every,
-            input,
-            coning,
-            kahan,
-            q0,
-            remap,
-            matrix,
-            bias,
-            estimator,
-            calibration,
-            interval_mean,
-            group_delay,
-            count_scale,
-        };
+    fn new(precision: &str, mask: bool, args: StreamArgs) -> PyResult<Self> {
         let made = match precision {
             "f32" => Sessions::F32(Session::new(&args)?),
             "f64" => Sessions::F64(Session::new(&args)?),
@@ -907,87 +920,42 @@ impl NativeStream {
         })
     }
 
-    /// Rows of f32 samples into an f32 stream.
+    /// Rows of samples into the stream, in its precision (`gyr`, `acc` and `temperature` are float32
+    /// arrays for an f32 stream, float64 for an f64 one); the result as [`Updated`].
     #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None, counts=None))]
     #[allow(clippy::too_many_arguments)]
-    fn update_f32<'py>(
+    fn update<'py>(
         &mut self,
         py: Python<'py>,
-        gyr: PyReadonlyArray2<'py, f32>,
+        gyr: Bound<'py, PyAny>,
         t: Option<PyReadonlyArray1<'py, f64>>,
         ticks: Option<PyReadonlyArray1<'py, u32>>,
-        acc: Option<PyReadonlyArray2<'py, f32>>,
-        temperature: Option<PyReadonlyArray1<'py, f32>>,
+        acc: Option<Bound<'py, PyAny>>,
+        temperature: Option<Bound<'py, PyAny>>,
         counts: Option<PyReadonlyArray2<'py, i16>>,
-    ) -> PyResult<Updated<'py, f32>> {
-        match &mut self.now {
-            Sessions::F32(s) => {
-                let arrays = Arrays {
-                    gyr,
-                    counts,
-                    t,
-                    ticks,
-                    acc,
-                    temperature,
-                };
-                update(py, s, self.mask, arrays)
-            }
-            Sessions::F64(_) => Err(PyValueError::new_err("an f64 stream takes f64 samples")),
-        }
-    }
-
-    /// Rows of f64 samples into an f64 stream.
-    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None, counts=None))]
-    #[allow(clippy::too_many_arguments)]
-    fn update_f64<'py>(
-        &mut self,
-        py: Python<'py>,
-        gyr: PyReadonlyArray2<'py, f64>,
-        t: Option<PyReadonlyArray1<'py, f64>>,
-        ticks: Option<PyReadonlyArray1<'py, u32>>,
-        acc: Option<PyReadonlyArray2<'py, f64>>,
-        temperature: Option<PyReadonlyArray1<'py, f64>>,
-        counts: Option<PyReadonlyArray2<'py, i16>>,
-    ) -> PyResult<Updated<'py, f64>> {
-        match &mut self.now {
-            Sessions::F64(s) => {
-                let arrays = Arrays {
-                    gyr,
-                    counts,
-                    t,
-                    ticks,
-                    acc,
-                    temperature,
-                };
-                update(py, s, self.mask, arrays)
-            }
-            Sessions::F32(_) => Err(PyValueError::new_err("an f32 stream takes f32 samples")),
-        }
+    ) -> PyResult<Bound<'py, PyAny>> {
+        with_session!(&mut self.now, s => {
+            let arrays = Arrays {
+                gyr: gyr.extract()?,
+                counts,
+                t,
+                ticks,
+                acc: acc.map(|a| a.extract()).transpose()?,
+                temperature: temperature.map(|a| a.extract()).transpose()?,
+            };
+            update(py, s, self.mask, arrays)?.into_bound_py_any(py)
+        })
     }
 
     /// The attitude `[w, x, y, z]` after the last accepted sample.
     fn attitude(&self) -> [f64; 4] {
-        match &self.now {
-            Sessions::F32(s) => quat4(s.p.attitude()),
-            Sessions::F64(s) => quat4(s.p.attitude()),
-        }
+        with_session!(&self.now, s => quat4(s.p.attitude()))
     }
 
     /// The bias subtracted now (rad/s, body axes): the estimator's estimate (with the residual learned
     /// in motion, when it runs: both are subtracted) or the fixed bias.
     fn bias(&self) -> Option<[f64; 3]> {
-        fn of<T: Real>(s: &Session<T>) -> Option<[f64; 3]> {
-            let b = match (s.estimator, s.fixed) {
-                (Some(e), _) => e.bias() + s.motion.map_or(Vec3::ZERO, |m| m.bias()),
-                (None, Some(f)) => f.bias(),
-                (None, None) => return None,
-            };
-            Some([b.x.to_f64(), b.y.to_f64(), b.z.to_f64()])
-        }
-        match &self.now {
-            Sessions::F32(s) => of(s),
-            Sessions::F64(s) => of(s),
-        }
+        with_session!(&self.now, s => s.bias())
     }
 
     /// What `CalibrationEstimator` has learned: the correction as a calibration (offset rad/s,
@@ -995,88 +963,40 @@ impl NativeStream {
     /// None without one.
     #[allow(clippy::type_complexity)]
     fn learned_calibration(&self) -> Option<(CalibrationArgs, [[f64; 3]; 3], [[f64; 3]; 3])> {
-        fn of<T: Real>(s: &Session<T>) -> Option<(CalibrationArgs, [[f64; 3]; 3], [[f64; 3]; 3])> {
-            let Some(Motion::Calibration(c)) = s.motion else {
-                return None;
-            };
-            let v = |v: Vec3<T>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
-            let m = |m: [[T; 3]; 3]| m.map(|r| r.map(|x| x.to_f64()));
-            let cal = c.calibration();
-            Some((
-                (v(cal.offset()), v(cal.sensitivity()), m(cal.misalignment())),
-                m(c.gain()),
-                m(c.gain_std_dev()),
-            ))
-        }
-        match &self.now {
-            Sessions::F32(s) => of(s),
-            Sessions::F64(s) => of(s),
-        }
+        with_session!(&self.now, s => s.learned_calibration())
     }
 
     /// The bias estimator's variance per axis ((rad/s)², `BiasEstimator::variance`: the last update's,
     /// grown by the drift since; `f64::MAX` before its first still window), or None without one.
     fn bias_variance(&self) -> Option<[f64; 3]> {
-        fn of<T: Real>(s: &Session<T>) -> Option<[f64; 3]> {
-            let v = s.estimator?.variance();
-            let f = |x: T| if x == T::MAX { f64::MAX } else { x.to_f64() };
-            Some([f(v.x), f(v.y), f(v.z)])
-        }
-        match &self.now {
-            Sessions::F32(s) => of(s),
-            Sessions::F64(s) => of(s),
-        }
+        with_session!(&self.now, s => s.bias_variance())
     }
 
     /// Steps taken, samples refused (skipped or raised), saturated samples counted.
     fn counts(&self) -> (u64, u64, u64) {
-        match &self.now {
-            Sessions::F32(s) => (s.p.steps(), s.refused, s.p.saturated_samples()),
-            Sessions::F64(s) => (s.p.steps(), s.refused, s.p.saturated_samples()),
-        }
+        with_session!(&self.now, s => (s.p.steps(), s.refused, s.p.saturated_samples()))
     }
 
     /// The sum of the refused delta angles `[x, y, z]` (rad, body axes): the rotation a refused
     /// increment took with it (a NaN or infinite one is not counted: its angle is unknown).
     fn lost_angle(&self) -> [f64; 3] {
-        match &self.now {
-            Sessions::F32(s) => s.lost,
-            Sessions::F64(s) => s.lost,
-        }
+        with_session!(&self.now, s => s.lost)
     }
 
     /// Replaces the attitude (normalized); the counters, the input model's samples and the clock stay.
     fn set_attitude(&mut self, q: [f64; 4]) -> PyResult<()> {
-        fn set<T: Real>(s: &mut Session<T>, q: [f64; 4]) -> Result<(), Error> {
-            let q = Quat::new(
-                T::from_f64(q[0]),
-                T::from_f64(q[1]),
-                T::from_f64(q[2]),
-                T::from_f64(q[3]),
-            );
-            s.p.set_attitude(q)
-        }
-        match &mut self.now {
-            Sessions::F32(s) => set(s, q),
-            Sessions::F64(s) => set(s, q),
-        }
-        .map_err(config_error)
+        with_session!(&mut self.now, s => s.p.set_attitude(quat(q))).map_err(config_error)
     }
 
     /// An estimator's attitude correction: `q ← q ⊗ exp(d)` (`body`) or `exp(d) ⊗ q` (rad).
     fn rotate(&mut self, d: [f64; 3], body: bool) -> PyResult<()> {
-        fn rot<T: Real>(s: &mut Session<T>, d: [f64; 3], body: bool) -> Result<(), Error> {
-            let v = Vec3::new(T::from_f64(d[0]), T::from_f64(d[1]), T::from_f64(d[2]));
+        with_session!(&mut self.now, s => {
             if body {
-                s.p.rotate_body(v)
+                s.p.rotate_body(vec3(d))
             } else {
-                s.p.rotate_reference(v)
+                s.p.rotate_reference(vec3(d))
             }
-        }
-        match &mut self.now {
-            Sessions::F32(s) => rot(s, d, body),
-            Sessions::F64(s) => rot(s, d, body),
-        }
+        })
         .map_err(config_error)
     }
 
@@ -1084,23 +1004,7 @@ impl NativeStream {
     /// fixed bias of `d` where there was none), and so do the samples the input model keeps; both or
     /// neither.
     fn correct_bias(&mut self, d: [f64; 3]) -> PyResult<()> {
-        fn corr<T: Real>(s: &mut Session<T>, d: [f64; 3]) -> Result<(), Error> {
-            let v = Vec3::new(T::from_f64(d[0]), T::from_f64(d[1]), T::from_f64(d[2]));
-            let mut next = *s;
-            match (&mut next.estimator, &mut next.fixed) {
-                (Some(e), _) => e.correct_bias(v)?,
-                (None, Some(f)) => f.correct_bias(v)?,
-                (None, None) => next.fixed = Some(FixedBias::new(v)?),
-            }
-            next.p.correct_bias(v)?;
-            *s = next;
-            Ok(())
-        }
-        match &mut self.now {
-            Sessions::F32(s) => corr(s, d),
-            Sessions::F64(s) => corr(s, d),
-        }
-        .map_err(config_error)
+        with_session!(&mut self.now, s => s.correct_bias(vec3(d))).map_err(config_error)
     }
 
     /// Back to the state it was made with.
@@ -1191,57 +1095,51 @@ fn config_error(e: Error) -> PyErr {
     PyValueError::new_err(format!("{} ({})", e, error_kind(&e)))
 }
 
+/// A vector from Python's floats, in precision `T`.
 fn vec3<T: Real>(v: [f64; 3]) -> Vec3<T> {
     Vec3::new(T::from_f64(v[0]), T::from_f64(v[1]), T::from_f64(v[2]))
 }
 
-macro_rules! euler_fns {
-    ($to_zyx:ident, $from_zyx:ident, $to_zxz:ident, $from_zxz:ident, $t:ty) => {
-        /// Quaternions (N, 4) → aerospace Euler angles (N, 3) = (yaw, pitch, roll).
-        #[pyfunction]
-        fn $to_zyx<'py>(
-            py: Python<'py>,
-            q: PyReadonlyArray2<'py, $t>,
-        ) -> PyResult<Bound<'py, PyArray2<$t>>> {
-            map_rows::<$t, 4, 3>(py, q, |[w, x, y, z]| {
-                let e = Quat::new(w, x, y, z).to_euler_zyx();
-                [e.yaw, e.pitch, e.roll]
-            })
-        }
-        /// Aerospace Euler angles (N, 3) = (yaw, pitch, roll) → quaternions (N, 4).
-        #[pyfunction]
-        fn $from_zyx<'py>(
-            py: Python<'py>,
-            e: PyReadonlyArray2<'py, $t>,
-        ) -> PyResult<Bound<'py, PyArray2<$t>>> {
-            map_rows::<$t, 3, 4>(py, e, |[yaw, pitch, roll]| {
-                let q = Quat::from_euler_zyx(EulerZyx { yaw, pitch, roll });
-                [q.w, q.x, q.y, q.z]
-            })
-        }
-        /// Quaternions (N, 4) → classical Euler angles (N, 3) = (psi, theta, phi).
-        #[pyfunction]
-        fn $to_zxz<'py>(
-            py: Python<'py>,
-            q: PyReadonlyArray2<'py, $t>,
-        ) -> PyResult<Bound<'py, PyArray2<$t>>> {
-            map_rows::<$t, 4, 3>(py, q, |[w, x, y, z]| {
-                let e = Quat::new(w, x, y, z).to_euler_zxz();
-                [e.psi, e.theta, e.phi]
-            })
-        }
-        /// Classical Euler angles (N, 3) = (psi, theta, phi) → quaternions (N, 4).
-        #[pyfunction]
-        fn $from_zxz<'py>(
-            py: Python<'py>,
-            e: PyReadonlyArray2<'py, $t>,
-        ) -> PyResult<Bound<'py, PyArray2<$t>>> {
-            map_rows::<$t, 3, 4>(py, e, |[psi, theta, phi]| {
-                let q = Quat::from_euler_zxz(EulerZxz { psi, theta, phi });
-                [q.w, q.x, q.y, q.z]
-            })
-        }
-    };
+/// A quaternion `[w, x, y, z]` from Python's floats, in precision `T`.
+fn quat<T: Real>(q: [f64; 4]) -> Quat<T> {
+    Quat::new(
+        T::from_f64(q[0]),
+        T::from_f64(q[1]),
+        T::from_f64(q[2]),
+        T::from_f64(q[3]),
+    )
+}
+
+/// A vector as Python gets it.
+fn f64x3<T: Real>(v: Vec3<T>) -> [f64; 3] {
+    [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()]
+}
+
+/// A quaternion as a row `[w, x, y, z]`.
+fn quat_row<T: Real>(q: Quat<T>) -> [T; 4] {
+    [q.w, q.x, q.y, q.z]
+}
+
+/// A quaternion row `[w, x, y, z]` → aerospace Euler angles `[yaw, pitch, roll]`.
+fn quat_to_euler_zyx<T: Real>([w, x, y, z]: [T; 4]) -> [T; 3] {
+    let e = Quat::new(w, x, y, z).to_euler_zyx();
+    [e.yaw, e.pitch, e.roll]
+}
+
+/// Aerospace Euler angles `[yaw, pitch, roll]` → a quaternion row.
+fn euler_zyx_to_quat<T: Real>([yaw, pitch, roll]: [T; 3]) -> [T; 4] {
+    quat_row(Quat::from_euler_zyx(EulerZyx { yaw, pitch, roll }))
+}
+
+/// A quaternion row `[w, x, y, z]` → classical Euler angles `[psi, theta, phi]`.
+fn quat_to_euler_zxz<T: Real>([w, x, y, z]: [T; 4]) -> [T; 3] {
+    let e = Quat::new(w, x, y, z).to_euler_zxz();
+    [e.psi, e.theta, e.phi]
+}
+
+/// Classical Euler angles `[psi, theta, phi]` → a quaternion row.
+fn euler_zxz_to_quat<T: Real>([psi, theta, phi]: [T; 3]) -> [T; 4] {
+    quat_row(Quat::from_euler_zxz(EulerZxz { psi, theta, phi }))
 }
 
 fn map_rows<'py, T: Real + numpy::Element, const I: usize, const O: usize>(
@@ -1258,41 +1156,18 @@ fn map_rows<'py, T: Real + numpy::Element, const I: usize, const O: usize>(
     out.into_flattened().into_pyarray(py).reshape([n, O])
 }
 
-macro_rules! calibrate_fn {
-    ($name:ident, $t:ty) => {
-        /// Calibrated rates (N, 3): `M · (s ⊙ (r − o))` per row, the core's `Calibration::apply`.
-        #[pyfunction]
-        fn $name<'py>(
-            py: Python<'py>,
-            gyr: PyReadonlyArray2<'py, $t>,
-            c: CalibrationArgs,
-        ) -> PyResult<Bound<'py, PyArray2<$t>>> {
-            let cal = calibration::<$t>(c).map_err(config_error)?;
-            map_rows::<$t, 3, 3>(py, gyr, |r| {
-                let w = cal.apply(GyroSample::new(Vec3::new(r[0], r[1], r[2]))).rate;
-                [w.x, w.y, w.z]
-            })
-        }
-    };
+/// Calibrated rates (N, 3): `M · (s ⊙ (r − o))` per row, the core's `Calibration::apply`.
+fn calibrate<'py, T: Real + numpy::Element>(
+    py: Python<'py>,
+    gyr: PyReadonlyArray2<'py, T>,
+    c: CalibrationArgs,
+) -> PyResult<Bound<'py, PyArray2<T>>> {
+    let cal = calibration::<T>(c).map_err(config_error)?;
+    map_rows(py, gyr, |r: [T; 3]| {
+        let w = cal.apply(GyroSample::new(Vec3::new(r[0], r[1], r[2]))).rate;
+        [w.x, w.y, w.z]
+    })
 }
-
-calibrate_fn!(calibrate_f32, f32);
-calibrate_fn!(calibrate_f64, f64);
-
-euler_fns!(
-    to_euler_zyx_f32,
-    from_euler_zyx_f32,
-    to_euler_zxz_f32,
-    from_euler_zxz_f32,
-    f32
-);
-euler_fns!(
-    to_euler_zyx_f64,
-    from_euler_zyx_f64,
-    to_euler_zxz_f64,
-    from_euler_zxz_f64,
-    f64
-);
 
 /// One noise term of a fit as Python gets it: the density, the coefficient and its standard error, whether
 /// the curve shows it, and the density's interval at two standard errors.
@@ -1375,65 +1250,84 @@ fn allan<'py>(
 }
 
 /// The loop a Rust user writes for the default configuration (ExpMap, History, FirstOrder, plain
-/// accumulator, a fixed period), with concrete types, on the same buffer; timed in Rust. Returns the
-/// seconds it took (the output allocation included, as in `integrate`) and its attitudes.
-macro_rules! rust_loop_fn {
-    ($name:ident, $t:ty) => {
-        #[pyfunction]
-        fn $name<'py>(
-            py: Python<'py>,
-            gyr: PyReadonlyArray2<'py, $t>,
-            period: f64,
-        ) -> PyResult<(f64, Bound<'py, PyArray2<$t>>)> {
-            let (rows, _) = gyr.as_slice()?.as_chunks::<3>();
-            let n = rows.len();
-            let (seconds, out) = py
-                .detach(|| -> Result<(f64, Vec<[$t; 4]>), Error> {
-                    let start = Instant::now();
-                    let mut period = FixedPeriod::<$t>::new(period)?;
-                    let mut p =
-                        Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
-                    let mut out = vec![[0.0; 4]; n];
-                    for (r, o) in rows.iter().zip(out.iter_mut()) {
-                        let dt = period.next_dt();
-                        if p.push(GyroSample::new(Vec3::new(r[0], r[1], r[2])), dt)
-                            .is_err()
-                        {
-                            period.carry_over(dt);
-                        }
-                        let q = p.attitude();
-                        *o = [q.w, q.x, q.y, q.z];
-                    }
-                    Ok((start.elapsed().as_secs_f64(), out))
-                })
-                .map_err(config_error)?;
-            Ok((
-                seconds,
-                out.into_flattened().into_pyarray(py).reshape([n, 4])?,
-            ))
+/// accumulator, a fixed period), with static types (compiled for each precision), on the same buffer;
+/// timed in Rust. Returns the seconds it took (the output allocation included, as in `integrate`) and its
+/// attitudes.
+fn rust_loop<'py, T: Real + numpy::Element>(
+    py: Python<'py>,
+    gyr: PyReadonlyArray2<'py, T>,
+    period: f64,
+) -> PyResult<(f64, Bound<'py, PyArray2<T>>)> {
+    let (rows, _) = gyr.as_slice()?.as_chunks::<3>();
+    let n = rows.len();
+    let (seconds, out) = py
+        .detach(|| -> Result<(f64, Vec<[T; 4]>), Error> {
+            let start = Instant::now();
+            let mut period = FixedPeriod::<T>::new(period)?;
+            let mut p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder)?;
+            let mut out = vec![[T::ZERO; 4]; n];
+            for (r, o) in rows.iter().zip(out.iter_mut()) {
+                let dt = period.next_dt();
+                if p.push(GyroSample::new(Vec3::new(r[0], r[1], r[2])), dt)
+                    .is_err()
+                {
+                    period.carry_over(dt);
+                }
+                *o = quat_row(p.attitude());
+            }
+            Ok((start.elapsed().as_secs_f64(), out))
+        })
+        .map_err(config_error)?;
+    Ok((
+        seconds,
+        out.into_flattened().into_pyarray(py).reshape([n, 4])?,
+    ))
+}
+
+/// The module's functions of an array, one per line `name(array: precision, arguments) = generic(more)`:
+/// pyo3 exports concrete signatures only, so each precision has its own function, which passes the array
+/// (in that precision), its arguments and `more` to the generic function and returns what it returns.
+/// `add_precision_fns` adds them all to the module.
+macro_rules! precision_fns {
+    ($($name:ident($a:ident: $t:ty $(, $arg:ident: $ty:ty)*) = $generic:ident($($more:expr),*);)*) => {
+        $(
+            #[pyfunction]
+            fn $name<'py>(
+                py: Python<'py>,
+                $a: PyReadonlyArray2<'py, $t>,
+                $($arg: $ty),*
+            ) -> PyResult<Bound<'py, PyAny>> {
+                $generic(py, $a $(, $arg)* $(, $more)*)?.into_bound_py_any(py)
+            }
+        )*
+
+        fn add_precision_fns(m: &Bound<'_, PyModule>) -> PyResult<()> {
+            $(m.add_function(wrap_pyfunction!($name, m)?)?;)*
+            Ok(())
         }
     };
 }
 
-rust_loop_fn!(rust_loop_f32, f32);
-rust_loop_fn!(rust_loop_f64, f64);
+precision_fns! {
+    calibrate_f32(gyr: f32, c: CalibrationArgs) = calibrate();
+    calibrate_f64(gyr: f64, c: CalibrationArgs) = calibrate();
+    to_euler_zyx_f32(q: f32) = map_rows(quat_to_euler_zyx);
+    to_euler_zyx_f64(q: f64) = map_rows(quat_to_euler_zyx);
+    from_euler_zyx_f32(e: f32) = map_rows(euler_zyx_to_quat);
+    from_euler_zyx_f64(e: f64) = map_rows(euler_zyx_to_quat);
+    to_euler_zxz_f32(q: f32) = map_rows(quat_to_euler_zxz);
+    to_euler_zxz_f64(q: f64) = map_rows(quat_to_euler_zxz);
+    from_euler_zxz_f32(e: f32) = map_rows(euler_zxz_to_quat);
+    from_euler_zxz_f64(e: f64) = map_rows(euler_zxz_to_quat);
+    rust_loop_f32(gyr: f32, period: f64) = rust_loop();
+    rust_loop_f64(gyr: f64, period: f64) = rust_loop();
+}
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeStream>()?;
-    m.add_function(wrap_pyfunction!(calibrate_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(calibrate_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(to_euler_zyx_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(from_euler_zyx_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(to_euler_zxz_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(from_euler_zxz_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(to_euler_zyx_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(from_euler_zyx_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(to_euler_zxz_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(from_euler_zxz_f64, m)?)?;
+    add_precision_fns(m)?;
     m.add_function(wrap_pyfunction!(allan, m)?)?;
-    m.add_function(wrap_pyfunction!(rust_loop_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(rust_loop_f64, m)?)?;
     m.add(
         "AXIS_REMAPS",
         AxisRemap::ALL.map(|r| format!("{r:?}")).to_vec(),

@@ -579,36 +579,35 @@ class Stream:
                 raise ValueError("calibration (rad/s readings) does not apply to delta angles")
             cal = calibration._native()
 
-        self._args = (
-            period,
-            bool(timestamps),
-            float(tick_hz) if tick_hz is not None else None,
-            int(tick_bits),
-            scheme,
-            stab,
-            every,
-            input,
-            coning,
-            accumulator == "kahan",
-            q0v,
-            self._mask,
-            remap,
-            matrix,
-            fixed_bias,
-            estimator,
-            cal,
-            interval_mean,
-            group_delay,
-            None if count_scale is None else count_scale._native(),
+        self._args = dict(
+            period=period,
+            timestamps=bool(timestamps),
+            tick_hz=float(tick_hz) if tick_hz is not None else None,
+            tick_bits=int(tick_bits),
+            scheme=scheme,
+            stabilizer=stab,
+            every=every,
+            input=input,
+            coning=coning,
+            kahan=accumulator == "kahan",
+            q0=q0v,
+            remap=remap,
+            matrix=matrix,
+            bias=fixed_bias,
+            estimator=estimator,
+            calibration=cal,
+            interval_mean=interval_mean,
+            group_delay=group_delay,
+            count_scale=None if count_scale is None else count_scale._native(),
         )
         # Made now, so a bad option fails here; remade in f32 if the first samples decide so.
-        self._native = _native.NativeStream(self._precision or "f64", *self._args)
+        self._native = _native.NativeStream(self._precision or "f64", self._mask, self._args)
 
     def _decide(self, precision: str) -> None:
         """Fixes the precision left open (``precision=None``) before the state first changes."""
         if self._precision is None:
             if precision != "f64":
-                self._native = _native.NativeStream(precision, *self._args)
+                self._native = _native.NativeStream(precision, self._mask, self._args)
             self._precision = precision
 
     def update(self, gyr, t=None, *, ticks=None, acc=None, temperature=None):
@@ -666,8 +665,7 @@ class Stream:
         dtype = _DTYPES[self._precision]
         acc_arr = None if acc is None else _array("acc", acc, dtype, 2, 3)
         temp_arr = None if temperature is None else _array("temperature", temperature, dtype, 1)
-        native = self._native.update_f32 if self._precision == "f32" else self._native.update_f64
-        q, mask, refused = native(gyr, t_arr, tick_arr, acc_arr, temp_arr, counts)
+        q, mask, refused = self._native.update(gyr, t_arr, tick_arr, acc_arr, temp_arr, counts)
         if refused is not None:
             raise RefusedSample(*refused)
         if self._mask:

@@ -128,50 +128,54 @@ impl<T: Real> FromRow<T> for DeltaAngle<T> {
 
 type Run<T> = (Vec<Quat<T>>, Vec<bool>);
 
-/// A fixed period through the core's `push_burst`, one sample per burst (a refused one is skipped).
-fn fixed<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>(
+/// Each item through `push` (`true`: the sample was refused), the attitude after each.
+fn record<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>, X>(
     mut p: Propagator<T, S, I, Z, A>,
-    samples: &[I::Sample],
+    items: impl IntoIterator<Item = X>,
+    mut push: impl FnMut(&mut Propagator<T, S, I, Z, A>, X) -> bool,
 ) -> Run<T> {
-    let mut period = FixedPeriod::<T>::new(PERIOD).expect("period");
-    let mut out = Vec::new();
-    let mut mask = Vec::new();
-    for k in 0..samples.len() {
-        mask.push(p.push_burst(&samples[k..=k], &mut period).is_err());
+    let (mut out, mut mask) = (Vec::new(), Vec::new());
+    for item in items {
+        mask.push(push(&mut p, item));
         out.push(p.attitude());
     }
     (out, mask)
 }
 
+/// A fixed period through the core's `push_burst`, one sample per burst (a refused one is skipped).
+fn fixed<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>(
+    p: Propagator<T, S, I, Z, A>,
+    samples: &[I::Sample],
+) -> Run<T> {
+    let mut period = FixedPeriod::<T>::new(PERIOD).expect("period");
+    record(p, samples.chunks(1), |p, one| {
+        p.push_burst(one, &mut period).is_err()
+    })
+}
+
 /// The sensor's ticks through the core's `push_burst_timed`, one sample per burst.
 fn ticked<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>(
-    mut p: Propagator<T, S, I, Z, A>,
+    p: Propagator<T, S, I, Z, A>,
     samples: &[I::Sample],
     ticks: &[u32],
 ) -> Run<T> {
     let mut clock = TickClock::<T>::new(TICK_HZ, 32).expect("clock");
-    let mut out = Vec::new();
-    let mut mask = Vec::new();
-    for (s, &tick) in samples.iter().zip(ticks) {
-        mask.push(p.push_burst_timed(&[(*s, tick)], &mut clock).is_err());
-        out.push(p.attitude());
-    }
-    (out, mask)
+    record(p, samples.iter().zip(ticks), |p, (s, &tick)| {
+        p.push_burst_timed(&[(*s, tick)], &mut clock).is_err()
+    })
 }
 
 /// Timestamps in seconds as `docs/python.md` states: the first accepted sample starts the stream; each
 /// later one is pushed with `dt = T(t − t_last + carry)`, `t_last` the last accepted timestamp, the carry
 /// (f64) what rounding to `T` left out.
 fn timed<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>(
-    mut p: Propagator<T, S, I, Z, A>,
+    p: Propagator<T, S, I, Z, A>,
     samples: &[I::Sample],
     t: &[f64],
 ) -> Run<T> {
     let mut last: Option<f64> = None;
     let mut carry = 0.0_f64;
-    let mut out = Vec::new();
-    let mut mask = Vec::new();
-    for (s, &tk) in samples.iter().zip(t) {
+    record(p, samples.iter().zip(t), |p, (s, &tk)| {
         let accepted = match last {
             None => tk.is_finite() && p.start(*s).is_ok(),
             Some(tl) if tk.is_finite() && tk > tl => {
@@ -188,10 +192,13 @@ fn timed<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<
         if accepted {
             last = Some(tk);
         }
-        mask.push(!accepted);
-        out.push(p.attitude());
-    }
-    (out, mask)
+        !accepted
+    })
+}
+
+/// The recommended configuration (ExpMap, History, FirstOrder) from the identity.
+fn recommended<T: Real>() -> Propagator<T, ExpMap, History<T>, FirstOrder> {
+    Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap()
 }
 
 fn samples<T: Real, X: FromRow<T>>(gyr: &[[f64; 3]]) -> Vec<X> {
@@ -304,11 +311,13 @@ fn main() {
         json: String::new(),
     };
     let fx = "\"dt\": 0.001";
+    // Each case below is written out as a Rust user writes it, with its own propagator type (scheme, input
+    // model and stabilizer as static types), options and inputs: so their calls share a shape.
 
     // The recommended configuration, both precisions.
     let s32 = samples::<f32, GyroSample<f32>>(&gyr);
     let s64 = samples::<f64, GyroSample<f64>>(&gyr);
-    let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    let p = recommended();
     w.case(
         "expmap_history_f32",
         &format!("{{{fx}, \"precision\": \"f32\"}}"),
@@ -316,7 +325,7 @@ fn main() {
         fixed(p, &s32),
         None,
     );
-    let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    let p = recommended();
     w.case(
         "expmap_history_f64",
         &format!("{{{fx}, \"precision\": \"f64\"}}"),
@@ -390,7 +399,7 @@ fn main() {
         timed(p, &b32, &t_bad),
         None,
     );
-    let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    let p = recommended();
     w.case(
         "expmap_history_bad_f64",
         &format!("{{{fx}, \"precision\": \"f64\", \"on_refused\": \"mask\"}}"),
@@ -426,7 +435,7 @@ fn main() {
         est.is_learned(),
         "the estimator should learn in this stream"
     );
-    let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    let p = recommended();
     w.case(
         "frontend_remap_estimator_f32",
         &format!("{{{fx}, \"precision\": \"f32\", \"alignment\": \"PyNxPz\", \"bias\": {{\"window\": 0.05, \"gate\": 0.9}}}}"),
@@ -451,7 +460,7 @@ fn main() {
     // The step at rest (sample 520) followed; the turn (from sample 900) not taken for bias.
     let stepped = Vec3::new(0.015, -0.007, 0.001);
     assert!((est.bias() - stepped).norm() < 5e-4, "{:?}", est.bias());
-    let p = Propagator::new(Quat::IDENTITY, ExpMap, History::new(), FirstOrder).unwrap();
+    let p = recommended();
     w.case(
         "estimator_rest_drift_noise_f64",
         &format!("{{{fx}, \"precision\": \"f64\", \"bias\": {{\"window\": 0.05, \"gate\": 0.05, \"drift\": 0.001, \"noise_density\": {density:?}}}}}"),
