@@ -40,7 +40,7 @@ use crate::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use crate::frontend::{FixedPeriod, TickClock};
 use crate::input::coning::ConingKind;
 use crate::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use crate::propagator::{checked_unit, corrected, Counters, Frame};
+use crate::propagator::{checked_unit, correct_in_place, Counters, Frame};
 use crate::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
 };
@@ -269,6 +269,26 @@ enum AccumulatorState<T> {
     Plain(Plain),
     Kahan(Kahan<T>),
     FloatFloat(FloatFloat<T>),
+}
+
+impl<T: Real> AccumulatorState<T> {
+    /// [`Accumulator::reset`] of the accumulator held.
+    fn reset(&mut self) {
+        match self {
+            AccumulatorState::Plain(a) => Accumulator::<T>::reset(a),
+            AccumulatorState::Kahan(a) => a.reset(),
+            AccumulatorState::FloatFloat(a) => a.reset(),
+        }
+    }
+
+    /// [`Accumulator::add`] of the accumulator held.
+    fn add(&mut self, q: Quat<T>, d: Quat<T>) -> Quat<T> {
+        match self {
+            AccumulatorState::Plain(a) => a.add(q, d),
+            AccumulatorState::Kahan(a) => a.add(q, d),
+            AccumulatorState::FloatFloat(a) => a.add(q, d),
+        }
+    }
 }
 
 /// The propagator a [`Config`] builds: the attitude, the counters, and the input model's and
@@ -582,7 +602,7 @@ impl<T: Real, X: ConfiguredSample<T>> Op<T> for TimedBurst<'_, X, T> {
 
 // The methods below mirror `Propagator`'s one for one (the run-time API is the static one, documented
 // there): each forwards to the static propagator through `visit`, or to code written once in
-// propagator.rs (`corrected`, `checked_unit`); the repeated lines are the mirror's signatures and docs.
+// propagator.rs (`correct_in_place`, `checked_unit`); the repeated lines are the mirror's signatures and docs.
 impl<T: Real> Configured<T> {
     /// Runs `visitor` on the static propagator this one stands for, then keeps its new state. One `match`
     /// on the configuration per call.
@@ -770,13 +790,20 @@ impl<T: Real> Configured<T> {
     /// [`Error::NonFiniteQuaternion`] or [`Error::ZeroQuaternion`].
     pub fn set_attitude(&mut self, q: Quat<T>) -> Result<(), Error> {
         self.q = checked_unit(q)?;
-        match &mut self.accumulator {
-            AccumulatorState::Plain(a) => Accumulator::<T>::reset(a),
-            AccumulatorState::Kahan(a) => a.reset(),
-            AccumulatorState::FloatFloat(a) => a.reset(),
-        }
+        self.accumulator.reset();
         self.counters.attitude_replaced();
         Ok(())
+    }
+
+    /// A correction through the accumulator, as [`Propagator::rotate_body`] makes it.
+    fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
+        correct_in_place(
+            &mut self.q,
+            &mut self.accumulator,
+            dtheta,
+            frame,
+            |a, q, d| a.add(q, d),
+        )
     }
 
     /// [`Propagator::rotate_body`]: `q ← q ⊗ exp_q(dtheta)`, a correction in the body frame (rad).
@@ -793,18 +820,6 @@ impl<T: Real> Configured<T> {
     /// As [`Propagator::rotate_body`]; the propagator is then unchanged.
     pub fn rotate_reference(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
         self.correct(dtheta, Frame::Reference)
-    }
-
-    /// A correction through the accumulator, as [`Propagator::rotate_body`] makes it.
-    fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
-        let mut acc = self.accumulator;
-        self.q = corrected(self.q, dtheta, frame, |q, d| match &mut acc {
-            AccumulatorState::Plain(a) => a.add(q, d),
-            AccumulatorState::Kahan(a) => a.add(q, d),
-            AccumulatorState::FloatFloat(a) => a.add(q, d),
-        })?;
-        self.accumulator = acc;
-        Ok(())
     }
 
     /// [`Propagator::correct_bias`]: the samples the input model keeps lowered by `delta` (rad/s), the

@@ -153,15 +153,16 @@ pub(crate) enum Frame {
     Reference,
 }
 
-/// The attitude `q` corrected by the rotation vector `dtheta` (rad) in `frame`, its increment added
-/// through `add` (an accumulator's `add`, on a copy the caller keeps only with the result): written once
-/// for the static and the run-time propagator. The error leaves the caller unchanged.
-pub(crate) fn corrected<T: Real>(
-    q: Quat<T>,
+/// Corrects the attitude `q` by the rotation vector `dtheta` (rad) in `frame`, its increment added through
+/// `add` (an accumulator's `add`) on a copy of `accumulator`; both are written back only with a finite
+/// result, so an error leaves them unchanged. Written once for the static and the run-time propagator.
+pub(crate) fn correct_in_place<T: Real, A: Copy>(
+    q: &mut Quat<T>,
+    accumulator: &mut A,
     dtheta: Vec3<T>,
     frame: Frame,
-    add: impl FnOnce(Quat<T>, Quat<T>) -> Quat<T>,
-) -> Result<Quat<T>, Error> {
+    add: impl FnOnce(&mut A, Quat<T>, Quat<T>) -> Quat<T>,
+) -> Result<(), Error> {
     if !dtheta.is_finite() {
         return Err(Error::NonFiniteRate);
     }
@@ -174,12 +175,15 @@ pub(crate) fn corrected<T: Real>(
         });
     }
     let d = match frame {
-        Frame::Body => q * e,
-        Frame::Reference => e * q,
+        Frame::Body => *q * e,
+        Frame::Reference => e * *q,
     };
-    let next = add(q, d);
+    let mut acc = *accumulator;
+    let next = add(&mut acc, *q, d);
     if next.is_finite() {
-        Ok(next)
+        *q = next;
+        *accumulator = acc;
+        Ok(())
     } else {
         Err(Error::NonFiniteResult)
     }
@@ -540,10 +544,13 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
 
     /// A correction through the accumulator; commits only a finite result.
     fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
-        let mut acc = self.accumulator;
-        self.q = corrected(self.q, dtheta, frame, |q, d| acc.add(q, d))?;
-        self.accumulator = acc;
-        Ok(())
+        correct_in_place(
+            &mut self.q,
+            &mut self.accumulator,
+            dtheta,
+            frame,
+            |a, q, d| a.add(q, d),
+        )
     }
 
     /// The bias subtracted from the samples grew by `delta` (rad/s, body axes): an estimator's bias
