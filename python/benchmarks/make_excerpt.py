@@ -51,6 +51,7 @@ def make_excerpt(source: Path, target: Path, rest: float, movement: float) -> sl
     return cut
 
 
+# The command line of firmware/data/make_imu_excerpt.py in shape: each script stands alone.
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("source", type=Path, help="a BROAD trial, e.g. 07_undisturbed_fast_rotation_B.hdf5")

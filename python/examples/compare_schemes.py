@@ -25,6 +25,7 @@ A, B, C = 2.0 * np.pi * 0.7, 2.0 * np.pi * np.sqrt(2.0), 2.0 * np.pi * 0.5 * np.
 BETA, GAMMA = 0.4, 0.3
 
 
+# Written out here (as in benchmarks/broad_metric.py) so that the example runs on quatprop and numpy alone.
 def qmul(p, q):
     """Hamilton product of [..., 4] arrays, scalar first."""
     pw, px, py, pz = np.moveaxis(p, -1, 0)

@@ -777,6 +777,7 @@ if Stream.__doc__:  # None under python -OO
     Stream.__doc__ = Stream.__doc__.format(options=_OPTIONS_DOC)
 
 
+# integrate's keywords are Stream's, written out: the signature is the documented API (help(), the stub).
 def integrate(
     gyr,
     dt: _Optional[float] = None,

@@ -2,6 +2,9 @@
 the attitude maps body vectors to the reference frame, rates are body-frame (q' = ½ q ⊗ (0, ω)),
 radians, rad/s, seconds."""
 
+# The stub repeats the package's signatures (`__init__.py`) with their types: mypy's stubtest
+# (tests/test_stubs.py) holds the two the same.
+
 from dataclasses import dataclass
 from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union, overload
 
@@ -170,6 +173,8 @@ class Stream:
     def correct_bias(self, delta: npt.ArrayLike) -> None: ...
     def reset(self) -> None: ...
 
+# The two overloads repeat the whole signature: `on_refused` decides the return type, and an overload
+# states every parameter.
 @overload
 def integrate(
     gyr: npt.ArrayLike,
