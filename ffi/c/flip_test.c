@@ -52,8 +52,10 @@ static void expect_est(quatprop_status_t got, const est_t *good, const est_t *fl
     expect_block(got, good, flipped, after, sizeof *after, EST_TAG_AT);
 }
 
-/* Hands the changed block `bad` to every function of the estimator but init: none may write an output. */
-static void try_est(const est_t *good, const est_t *bad) {
+/* Hands the changed block `bad` to every function of the estimator but init: none may write an output.
+ * (`unused`: the signature of `try_block`.) */
+static void try_est(const void *good, const void *bad, int unused) {
+    (void)unused;
     est_t after;
     memcpy(&after, bad, sizeof after);
     const float r[3] = {0.1f, 0.2f, 0.3f}, a[3] = {0.0f, 0.0f, 9.81f};
@@ -69,8 +71,8 @@ static void try_est(const est_t *good, const est_t *bad) {
         if (out[i] != 7.0f || out2[i] != 7.0f || out3[i] != 7.0f) wrong++;
 }
 
-/* Hands the changed state `bad` to a getter, a single push and a burst. */
-static void try_state(const quatprop_t *good, const quatprop_t *bad, int deltas) {
+/* Hands the changed state `bad` to a getter, a single push (a delta angle if `deltas`) and a burst. */
+static void try_state(const void *good, const void *bad, int deltas) {
     quatprop_t after;
     quatprop_quat_t q;
     memcpy(&after, bad, sizeof after);
@@ -90,6 +92,44 @@ static uint32_t rng(void) {
     rng_state ^= rng_state >> 17;
     rng_state ^= rng_state << 5;
     return rng_state;
+}
+
+/* What a damaged copy `bad` of the block `good` is handed to (`arg`: passed through). */
+typedef void try_block(const void *good, const void *bad, int arg);
+
+enum { PAIRS = 4096, RUNS = 1024 };
+
+/* Hands `try_it` each damaged copy of the block `good` (`size` bytes), made in `bad`: each byte with each
+ * bit flipped, and inverted; PAIRS random pairs of bits flipped; RUNS random runs of 2 to 32 bytes
+ * changed. Returns how many damaged copies were tried. */
+static unsigned damage_all(const void *good, void *bad, size_t size, try_block *try_it, int arg) {
+    static const uint8_t flips[9] = {0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0xff};
+    uint8_t *b = bad;
+    unsigned tried = 0;
+    for (size_t byte = 0; byte < size; byte++)
+        for (int f = 0; f < 9; f++) {
+            memcpy(bad, good, size);
+            b[byte] ^= flips[f];
+            tried++;
+            try_it(good, bad, arg);
+        }
+    for (int k = 0; k < PAIRS; k++) {
+        uint32_t i = rng() % (8 * size), j = rng() % (8 * size);
+        if (i == j) continue;
+        memcpy(bad, good, size);
+        b[i / 8] ^= (uint8_t)(1u << (i % 8));
+        b[j / 8] ^= (uint8_t)(1u << (j % 8));
+        tried++;
+        try_it(good, bad, arg);
+    }
+    for (int k = 0; k < RUNS; k++) {
+        uint32_t len = 2 + rng() % 31, at = rng() % (uint32_t)(size - len + 1);
+        memcpy(bad, good, size);
+        for (uint32_t i = at; i < at + len; i++) b[i] ^= (uint8_t)(1u | rng());
+        tried++;
+        try_it(good, bad, arg);
+    }
+    return tried;
 }
 
 /* A state in configuration `c` with every front-end part, after 40 samples. 0 if init refused it. */
@@ -117,8 +157,6 @@ int main(void) {
     signal(SIGILL, crashed);
     signal(SIGTRAP, crashed);
     signal(SIGFPE, crashed);
-    static const uint8_t flips[9] = {0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0xff};
-    enum { PAIRS = 4096, RUNS = 1024 };
     unsigned configs = 0, states = 0;
     for (uint32_t in = 0; in <= QUATPROP_INPUT_DELTA_ANGLES; in++)
         for (uint32_t cn = 0; cn <= (in == QUATPROP_INPUT_DELTA_ANGLES ? QUATPROP_CONING_FIVE_SAMPLE : 0); cn++)
@@ -134,30 +172,7 @@ int main(void) {
                             return 1;
                         }
                         configs++;
-                        int deltas = in == QUATPROP_INPUT_DELTA_ANGLES;
-                        for (size_t byte = 0; byte < sizeof good; byte++)
-                            for (int f = 0; f < 9; f++) {
-                                memcpy(&bad, &good, sizeof bad);
-                                ((uint8_t *)&bad)[byte] ^= flips[f];
-                                states++;
-                                try_state(&good, &bad, deltas);
-                            }
-                        for (int k = 0; k < PAIRS; k++) {
-                            uint32_t i = rng() % (8 * sizeof good), j = rng() % (8 * sizeof good);
-                            if (i == j) continue;
-                            memcpy(&bad, &good, sizeof bad);
-                            ((uint8_t *)&bad)[i / 8] ^= (uint8_t)(1u << (i % 8));
-                            ((uint8_t *)&bad)[j / 8] ^= (uint8_t)(1u << (j % 8));
-                            states++;
-                            try_state(&good, &bad, deltas);
-                        }
-                        for (int k = 0; k < RUNS; k++) {
-                            uint32_t len = 2 + rng() % 31, at = rng() % (uint32_t)(sizeof good - len + 1);
-                            memcpy(&bad, &good, sizeof bad);
-                            for (uint32_t b = at; b < at + len; b++) ((uint8_t *)&bad)[b] ^= (uint8_t)(1u | rng());
-                            states++;
-                            try_state(&good, &bad, deltas);
-                        }
+                        states += damage_all(&good, &bad, sizeof good, try_state, c.input == QUATPROP_INPUT_DELTA_ANGLES);
                     }
     printf("flip: %u configurations, %u changed states (each of the %zu bytes: every bit flipped, and inverted;"
            " %d random pairs of bits; %d runs of 2 to 32 bytes each changed), %lu calls: %lu refused with the expected"
@@ -179,29 +194,7 @@ int main(void) {
             printf("FAIL calibration estimator after %u samples\n", est_samples[k]);
             return 1;
         }
-        for (size_t byte = 0; byte < sizeof good; byte++)
-            for (int f = 0; f < 9; f++) {
-                memcpy(&bad, &good, sizeof bad);
-                ((uint8_t *)&bad)[byte] ^= flips[f];
-                est_states++;
-                try_est(&good, &bad);
-            }
-        for (int p = 0; p < PAIRS; p++) {
-            uint32_t i = rng() % (8 * sizeof good), j = rng() % (8 * sizeof good);
-            if (i == j) continue;
-            memcpy(&bad, &good, sizeof bad);
-            ((uint8_t *)&bad)[i / 8] ^= (uint8_t)(1u << (i % 8));
-            ((uint8_t *)&bad)[j / 8] ^= (uint8_t)(1u << (j % 8));
-            est_states++;
-            try_est(&good, &bad);
-        }
-        for (int p = 0; p < RUNS; p++) {
-            uint32_t len = 2 + rng() % 31, at = rng() % (uint32_t)(sizeof good - len + 1);
-            memcpy(&bad, &good, sizeof bad);
-            for (uint32_t b = at; b < at + len; b++) ((uint8_t *)&bad)[b] ^= (uint8_t)(1u | rng());
-            est_states++;
-            try_est(&good, &bad);
-        }
+        est_states += damage_all(&good, &bad, sizeof good, try_est, 0);
     }
     printf("flip: calibration estimator: 3 blocks (fresh, averaging, learning), %u changed blocks (each of the %zu"
            " bytes: every bit flipped, and inverted; %d random pairs of bits; %d runs of 2 to 32 bytes each changed),"

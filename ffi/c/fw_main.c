@@ -13,27 +13,24 @@
 #include "scene.h"
 
 #if defined(RUST_KINDS)
-uint32_t quatprop_baseline_kinds_init(quatprop_t *s);
-void quatprop_baseline_kinds_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
-void quatprop_baseline_kinds_attitude(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);
 #define NAME "kinds"
-static int start(quatprop_t *s) { return quatprop_baseline_kinds_init(s) == 1; }
-static void feed(quatprop_t *s, const int16_t (*f)[3], size_t n, uint32_t *refused) {
-    (void)refused;
-    quatprop_baseline_kinds_on_fifo(s, &f[0][0], n);
-}
-static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { quatprop_baseline_kinds_attitude(s, q, refused); }
+#define BASELINE(f) quatprop_baseline_kinds_##f
 #elif defined(RUST_BASELINE)
-uint32_t quatprop_baseline_init(quatprop_t *s);
-void quatprop_baseline_on_fifo(quatprop_t *s, const int16_t *counts, size_t n);
-void quatprop_baseline_attitude(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);
 #define NAME "rust"
-static int start(quatprop_t *s) { return quatprop_baseline_init(s) == 1; }
+#define BASELINE(f) quatprop_baseline_##f
+#endif
+
+#if defined(BASELINE)
+/* One of the Rust quick starts behind ffi/src/baseline.rs's three functions (not in the header). */
+uint32_t BASELINE(init)(quatprop_t *s);
+void BASELINE(on_fifo)(quatprop_t *s, const int16_t *counts, size_t n);
+void BASELINE(attitude)(const quatprop_t *s, quatprop_quat_t *out, uint32_t *refused);
+static int start(quatprop_t *s) { return BASELINE(init)(s) == 1; }
 static void feed(quatprop_t *s, const int16_t (*f)[3], size_t n, uint32_t *refused) {
     (void)refused;
-    quatprop_baseline_on_fifo(s, &f[0][0], n);
+    BASELINE(on_fifo)(s, &f[0][0], n);
 }
-static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { quatprop_baseline_attitude(s, q, refused); }
+static void result(quatprop_t *s, quatprop_quat_t *q, uint32_t *refused) { BASELINE(attitude)(s, q, refused); }
 #else
 #define NAME "c"
 static int start(quatprop_t *s) { return attitude_init(s) == QUATPROP_OK; }

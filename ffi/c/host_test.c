@@ -16,26 +16,16 @@ static unsigned passed, failed;
         if (cond) passed++;                                                  \
         else { failed++; printf("FAIL %s:%d: %s\n", __FILE__, __LINE__, #cond); } \
     } while (0)
-/* `call` returns `code` and leaves the state's bytes as they were. */
-#define REFUSED(st, call, code)                                              \
+/* `call` returns `code` and leaves the bytes of the block `blk` points to (a state or a calibration
+ * estimator) as they were. */
+#define REFUSED(blk, call, code)                                             \
     do {                                                                     \
-        quatprop_t before_;                                                  \
-        memcpy(&before_, (st), sizeof before_);                              \
+        unsigned char before_[sizeof *(blk)];                                \
+        memcpy(before_, (blk), sizeof before_);                              \
         quatprop_status_t got_ = (call);                                     \
         if (got_ != (code)) printf("  got %s\n", quatprop_status_name((int32_t)got_)); \
         CHECK(got_ == (code));                                               \
-        CHECK(memcmp(&before_, (st), sizeof before_) == 0);                  \
-    } while (0)
-
-/* The same for a calibration estimator's block. */
-#define EST_REFUSED(est, call, code)                                         \
-    do {                                                                     \
-        quatprop_calibration_estimator_t before_;                            \
-        memcpy(&before_, (est), sizeof before_);                             \
-        quatprop_status_t got_ = (call);                                     \
-        if (got_ != (code)) printf("  got %s\n", quatprop_status_name((int32_t)got_)); \
-        CHECK(got_ == (code));                                               \
-        CHECK(memcmp(&before_, (est), sizeof before_) == 0);                 \
+        CHECK(memcmp(before_, (blk), sizeof before_) == 0);                  \
     } while (0)
 
 static quatprop_config_t config(uint32_t input) {
@@ -419,12 +409,12 @@ static void calibration_estimator_refusals(void) {
     const float ok[3] = {0.1f, 0.2f, 0.3f}, g[3] = {0.0f, 0.0f, 9.81f};
     const float nan3[3] = {0.0f, NAN, 0.0f}, inf3[3] = {INFINITY, 0.0f, 0.0f};
     float out[9] = {7, 7, 7, 7, 7, 7, 7, 7, 7}, out2[9], out3[9];
-    EST_REFUSED(&zeroed, quatprop_calibration_estimator_update(&zeroed, ok, g, 0.01), QUATPROP_NOT_INITIALIZED);
-    EST_REFUSED(&zeroed, quatprop_calibration_estimator_correct(&zeroed, ok, out), QUATPROP_NOT_INITIALIZED);
-    EST_REFUSED(&zeroed, quatprop_calibration_estimator_at_rest(&zeroed), QUATPROP_NOT_INITIALIZED);
-    EST_REFUSED(&zeroed, quatprop_calibration_estimator_get_gain(&zeroed, out, out2), QUATPROP_NOT_INITIALIZED);
-    EST_REFUSED(&zeroed, quatprop_calibration_estimator_get_bias(&zeroed, out), QUATPROP_NOT_INITIALIZED);
-    EST_REFUSED(&zeroed, quatprop_calibration_estimator_get_calibration(&zeroed, out, out2, out3), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_calibration_estimator_update(&zeroed, ok, g, 0.01), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_calibration_estimator_correct(&zeroed, ok, out), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_calibration_estimator_at_rest(&zeroed), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_calibration_estimator_get_gain(&zeroed, out, out2), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_calibration_estimator_get_bias(&zeroed, out), QUATPROP_NOT_INITIALIZED);
+    REFUSED(&zeroed, quatprop_calibration_estimator_get_calibration(&zeroed, out, out2, out3), QUATPROP_NOT_INITIALIZED);
     CHECK(out[0] == 7.0f && out[8] == 7.0f);
 
     CHECK(quatprop_calibration_estimator_init(NULL, 0.01, 0.01, 0.0087, QUATPROP_DEFAULT_MOTION_NOISE) == QUATPROP_NULL_POINTER);
@@ -435,46 +425,46 @@ static void calibration_estimator_refusals(void) {
     for (int i = 0; i < 400 && tumble_next(&t, rate, accel); i++)
         CHECK(quatprop_calibration_estimator_update(&e, rate, accel, TUMBLE_DT) == QUATPROP_OK);
     /* A bad configuration leaves the block as it was. */
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.0, 0.01, 0.0087, 1e-3), QUATPROP_NON_POSITIVE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, -0.01, 0.01, 0.0087, 1e-3), QUATPROP_NON_POSITIVE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, NAN, 0.01, 0.0087, 1e-3), QUATPROP_NON_FINITE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, -0.01, 0.0087, 1e-3), QUATPROP_INVALID_ESTIMATOR);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.06, 1e-3), QUATPROP_INVALID_ESTIMATOR);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, NAN, 0.0087, 1e-3), QUATPROP_INVALID_ESTIMATOR);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, 0.0), QUATPROP_INVALID_ESTIMATOR);
-    EST_REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, INFINITY), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.0, 0.01, 0.0087, 1e-3), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, -0.01, 0.01, 0.0087, 1e-3), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, NAN, 0.01, 0.0087, 1e-3), QUATPROP_NON_FINITE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, -0.01, 0.0087, 1e-3), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.06, 1e-3), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, NAN, 0.0087, 1e-3), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, 0.0), QUATPROP_INVALID_ESTIMATOR);
+    REFUSED(&e, quatprop_calibration_estimator_init(&e, 0.01, 0.01, 0.0087, INFINITY), QUATPROP_INVALID_ESTIMATOR);
     /* Bad samples: the core's errors; nothing changes. */
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, nan3, g, 0.01), QUATPROP_NON_FINITE_RATE);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, inf3, g, 0.01), QUATPROP_NON_FINITE_RATE);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, nan3, 0.01), QUATPROP_NON_FINITE_AUX);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, inf3, 0.01), QUATPROP_NON_FINITE_AUX);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, 0.0), QUATPROP_NON_POSITIVE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, -0.01), QUATPROP_NON_POSITIVE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, NAN), QUATPROP_NON_FINITE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, INFINITY), QUATPROP_NON_FINITE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, 1e300), QUATPROP_NON_FINITE_STEP);
-    EST_REFUSED(&e, quatprop_calibration_estimator_correct(&e, nan3, out), QUATPROP_NON_FINITE_RATE);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, nan3, g, 0.01), QUATPROP_NON_FINITE_RATE);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, inf3, g, 0.01), QUATPROP_NON_FINITE_RATE);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, nan3, 0.01), QUATPROP_NON_FINITE_AUX);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, inf3, 0.01), QUATPROP_NON_FINITE_AUX);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, 0.0), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, -0.01), QUATPROP_NON_POSITIVE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, NAN), QUATPROP_NON_FINITE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, INFINITY), QUATPROP_NON_FINITE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, g, 1e300), QUATPROP_NON_FINITE_STEP);
+    REFUSED(&e, quatprop_calibration_estimator_correct(&e, nan3, out), QUATPROP_NON_FINITE_RATE);
     CHECK(out[0] == 7.0f);
     /* NULL and misaligned pointers. */
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, NULL, g, 0.01), QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, NULL, 0.01), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, NULL, g, 0.01), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, ok, NULL, 0.01), QUATPROP_NULL_POINTER);
     CHECK(quatprop_calibration_estimator_update(NULL, ok, g, 0.01) == QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_correct(&e, ok, NULL), QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_correct(&e, NULL, out), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_correct(&e, ok, NULL), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_correct(&e, NULL, out), QUATPROP_NULL_POINTER);
     CHECK(quatprop_calibration_estimator_correct(NULL, ok, out) == QUATPROP_NULL_POINTER);
     CHECK(quatprop_calibration_estimator_at_rest(NULL) == QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_get_gain(&e, out, NULL), QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_get_gain(&e, NULL, out2), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_get_gain(&e, out, NULL), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_get_gain(&e, NULL, out2), QUATPROP_NULL_POINTER);
     CHECK(quatprop_calibration_estimator_get_gain(NULL, out, out2) == QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_get_bias(&e, NULL), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_get_bias(&e, NULL), QUATPROP_NULL_POINTER);
     CHECK(quatprop_calibration_estimator_get_bias(NULL, out) == QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_get_calibration(&e, out, out2, NULL), QUATPROP_NULL_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_get_calibration(&e, NULL, out2, out3), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_get_calibration(&e, out, out2, NULL), QUATPROP_NULL_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_get_calibration(&e, NULL, out2, out3), QUATPROP_NULL_POINTER);
     CHECK(quatprop_calibration_estimator_get_calibration(NULL, out, out2, out3) == QUATPROP_NULL_POINTER);
     CHECK(out[0] == 7.0f);
     _Alignas(8) unsigned char raw[16] = {0};
-    EST_REFUSED(&e, quatprop_calibration_estimator_update(&e, (const float *)(raw + 2), g, 0.01), QUATPROP_MISALIGNED_POINTER);
-    EST_REFUSED(&e, quatprop_calibration_estimator_get_bias(&e, (float *)(raw + 1)), QUATPROP_MISALIGNED_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_update(&e, (const float *)(raw + 2), g, 0.01), QUATPROP_MISALIGNED_POINTER);
+    REFUSED(&e, quatprop_calibration_estimator_get_bias(&e, (float *)(raw + 1)), QUATPROP_MISALIGNED_POINTER);
     CHECK(quatprop_calibration_estimator_get_bias((const quatprop_calibration_estimator_t *)(raw + 4), out) == QUATPROP_MISALIGNED_POINTER);
     CHECK(strcmp(quatprop_status_name(QUATPROP_NON_FINITE_AUX), "QUATPROP_NON_FINITE_AUX") == 0);
     CHECK(strcmp(quatprop_status_name(QUATPROP_INVALID_CALIBRATION), "QUATPROP_INVALID_CALIBRATION") == 0);

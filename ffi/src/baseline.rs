@@ -97,6 +97,8 @@ c_functions!(
 /// The quick start's `Attitude` with the core's own run-time scheme and stabilizer (`SchemeKind`,
 /// `StabilizerKind`) and everything else static: splits the C API's cost into the core's run-time dispatch
 /// and the C layer's own.
+// The quick start's struct and `on_fifo` again, with other types: the quick start (firmware/quickstart/) is
+// the README's code as a user writes it, with static types, so it is not made generic for this comparison.
 mod kinds {
     use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
     use quatprop::scheme::SchemeKind;

@@ -11,11 +11,15 @@
 
 use crate::state::{vec3, Fail};
 use crate::{
-    check, crc32c_update, open, quatprop_status_t, read, seal, sealed_sum, status, write, S,
+    block, check, crc32c_update, init, open, put, quatprop_status_t, read, seal, sealed_sum,
+    status, write, Sealed, S,
 };
 use core::mem::{align_of, size_of};
 use quatprop::frontend::CalibrationEstimator;
 use quatprop::{Error, GyroSample, Vec3};
+
+// The block's constants and struct as `quatprop_t`'s in lib.rs, written out: cbindgen reads them as they
+// stand (no macro) into the header.
 
 /// `uint64_t` words in `quatprop_calibration_estimator_t`.
 pub const QUATPROP_CALIBRATION_ESTIMATOR_WORDS: usize = 192;
@@ -88,26 +92,9 @@ pub(crate) fn encode(est: &Estimator) -> Result<Block, quatprop_status_t> {
     seal(est, MAGIC, checksum)
 }
 
-/// The block behind `e`.
-///
-/// # Safety
-/// `e`, if non-null and aligned, must point to a readable `quatprop_calibration_estimator_t`.
-unsafe fn block<'a>(
-    e: *const quatprop_calibration_estimator_t,
-) -> Result<&'a Block, quatprop_status_t> {
-    check(e)?;
-    // SAFETY: non-null and aligned (checked); the block is QUATPROP_CALIBRATION_ESTIMATOR_SIZE readable
-    // bytes per the caller's contract, and any bytes are a valid `Block`.
-    Ok(unsafe { &*e.cast::<Block>() })
-}
-
-/// Writes `b` into the block behind `e` (checked by the caller).
-///
-/// # Safety
-/// `e` must be non-null, aligned and point to a writable block not in use elsewhere.
-unsafe fn put(e: *mut quatprop_calibration_estimator_t, b: &Block) {
-    // SAFETY: per the contract; `Block` has the block's size and alignment 1.
-    unsafe { e.cast::<Block>().write(*b) };
+// SAFETY: `Block` is `[u8; QUATPROP_CALIBRATION_ESTIMATOR_SIZE]`, the size of the block (asserted).
+unsafe impl Sealed for quatprop_calibration_estimator_t {
+    type Bytes = Block;
 }
 
 /// Runs `f` on the estimator behind `e` and stores it back sealed if `f` succeeds; a refused call (a bad
@@ -167,25 +154,18 @@ pub unsafe extern "C" fn quatprop_calibration_estimator_init(
     misalignment_sigma: f64,
     motion_noise: f64,
 ) -> quatprop_status_t {
-    if let Err(e) = check(est) {
-        return e;
-    }
-    let made = Estimator::with_motion_noise(
-        sample_period,
-        sensitivity_sigma,
-        misalignment_sigma,
-        motion_noise,
-    );
-    match made
-        .map_err(|e| status(Fail::Core(e)))
-        .and_then(|x| encode(&x))
-    {
-        Ok(b) => {
-            // SAFETY: non-null and aligned (checked), writable per the contract.
-            unsafe { put(est, &b) };
-            S::QUATPROP_OK
-        }
-        Err(e) => e,
+    // SAFETY: forwarded contract.
+    unsafe {
+        init(est, || {
+            Estimator::with_motion_noise(
+                sample_period,
+                sensitivity_sigma,
+                misalignment_sigma,
+                motion_noise,
+            )
+            .map_err(|e| status(Fail::Core(e)))
+            .and_then(|x| encode(&x))
+        })
     }
 }
 

@@ -44,8 +44,8 @@ use core::mem::{align_of, size_of};
 use quatprop::frontend::{
     Alignment, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod, TickClock,
 };
-use quatprop::{DeltaAngle, Error, GyroSample, Quat};
-use state::{remap_of, vec3, Bias, Choice, Deltas, Fail, Inner, Rates, Time};
+use quatprop::{Error, EulerZxz, EulerZyx, GyroSample, Quat, Vec3};
+use state::{remap_of, vec3, Bias, Deltas, Fail, Inner, Rates, Time};
 
 /// Version of this C API (the layout of the structs and the meaning of the values); bumped on any change.
 /// 2: every time (`dt`, period) is a `double`; the state is stored encoded and checksummed.
@@ -336,6 +336,8 @@ fn checksum_abi3(b: &Block) -> u32 {
     h
 }
 
+// include/quatprop.h repeats this enum and every item below: cbindgen generates it from this file.
+
 /// Result of every call. Values are fixed (ABI); 1 to 17 mirror `quatprop::Error`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -622,6 +624,43 @@ pub struct quatprop_euler_zxz_t {
     pub phi: f32,
 }
 
+impl From<Quat<f32>> for quatprop_quat_t {
+    fn from(q: Quat<f32>) -> Self {
+        Self {
+            w: q.w,
+            x: q.x,
+            y: q.y,
+            z: q.z,
+        }
+    }
+}
+
+impl From<quatprop_quat_t> for Quat<f32> {
+    fn from(q: quatprop_quat_t) -> Self {
+        Quat::new(q.w, q.x, q.y, q.z)
+    }
+}
+
+impl From<EulerZyx<f32>> for quatprop_euler_zyx_t {
+    fn from(e: EulerZyx<f32>) -> Self {
+        Self {
+            yaw: e.yaw,
+            pitch: e.pitch,
+            roll: e.roll,
+        }
+    }
+}
+
+impl From<EulerZxz<f32>> for quatprop_euler_zxz_t {
+    fn from(e: EulerZxz<f32>) -> Self {
+        Self {
+            psi: e.psi,
+            theta: e.theta,
+            phi: e.phi,
+        }
+    }
+}
+
 /// The counters of a state.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -687,24 +726,62 @@ unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], quatprop_status
     Ok(unsafe { core::slice::from_raw_parts(p, n) })
 }
 
-/// The block behind `s`.
+/// A C block the library seals (`quatprop_t`, `quatprop_calibration_estimator_t`), seen as its bytes.
 ///
 /// # Safety
-/// `s`, if non-null and aligned, must point to a readable `quatprop_t`.
-unsafe fn block<'a>(s: *const quatprop_t) -> Result<&'a Block, quatprop_status_t> {
-    check(s)?;
-    // SAFETY: non-null and aligned (checked); a `quatprop_t` is QUATPROP_STATE_SIZE readable bytes per the
-    // caller's contract, and any bytes are a valid `[u8; QUATPROP_STATE_SIZE]`.
-    Ok(unsafe { &*s.cast::<Block>() })
+/// `Bytes` must be a byte array of the block's size: any bytes are then a valid `Bytes`, and its
+/// alignment (1) is at most the block's.
+unsafe trait Sealed {
+    /// The block as bytes.
+    type Bytes: Copy;
 }
 
-/// Writes `b` into the block behind `s` (checked by the caller).
+// SAFETY: `Block` is `[u8; QUATPROP_STATE_SIZE]`, the size of `quatprop_t` (asserted).
+unsafe impl Sealed for quatprop_t {
+    type Bytes = Block;
+}
+
+/// The block behind `p`.
 ///
 /// # Safety
-/// `s` must be non-null, aligned and point to a writable `quatprop_t` not in use elsewhere.
-unsafe fn put(s: *mut quatprop_t, b: &Block) {
-    // SAFETY: per the contract; `Block` has the size of `quatprop_t` and alignment 1.
-    unsafe { s.cast::<Block>().write(*b) };
+/// `p`, if non-null and aligned, must point to a readable block.
+unsafe fn block<'a, B: Sealed>(p: *const B) -> Result<&'a B::Bytes, quatprop_status_t> {
+    check(p)?;
+    // SAFETY: non-null and aligned (checked); the block is readable per the caller's contract, and any
+    // bytes of its size are a valid `B::Bytes` (the trait's contract).
+    Ok(unsafe { &*p.cast::<B::Bytes>() })
+}
+
+/// Writes `b` into the block behind `p` (checked by the caller).
+///
+/// # Safety
+/// `p` must be non-null, aligned and point to a writable block not in use elsewhere.
+unsafe fn put<B: Sealed>(p: *mut B, b: &B::Bytes) {
+    // SAFETY: per the contract; `B::Bytes` has the block's size and alignment 1 (the trait's contract).
+    unsafe { p.cast::<B::Bytes>().write(*b) };
+}
+
+/// Sets up the block behind `p` with the sealed bytes `made` returns (an init's work, once `p` is
+/// checked); on any error nothing is written.
+///
+/// # Safety
+/// `p` must be NULL or point to a writable block not in use elsewhere; `made` may read only what its
+/// caller's contract makes readable.
+unsafe fn init<B: Sealed>(
+    p: *mut B,
+    made: impl FnOnce() -> Result<B::Bytes, quatprop_status_t>,
+) -> quatprop_status_t {
+    if let Err(e) = check(p) {
+        return e;
+    }
+    match made() {
+        Ok(b) => {
+            // SAFETY: non-null and aligned (checked), writable per the contract.
+            unsafe { put(p, &b) };
+            S::QUATPROP_OK
+        }
+        Err(e) => e,
+    }
 }
 
 /// Runs `f` on the state behind `s`, then stores the state back (a refused call leaves it unchanged, so
@@ -738,6 +815,37 @@ unsafe fn with(
         Ok(r) => done(r),
         Err(e) => e,
     }
+}
+
+/// Reads a `T` from `p`, then runs `f` on the state behind `s` with it (as [`with`]); a bad `p` is refused
+/// before the state is read.
+///
+/// # Safety
+/// As [`with`]; `p` NULL or readable as for [`read`].
+unsafe fn with_read<T: Copy>(
+    s: *mut quatprop_t,
+    p: *const T,
+    f: impl FnOnce(&mut Inner, T) -> Result<(), Fail>,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    match unsafe { read(p) } {
+        // SAFETY: forwarded contract.
+        Ok(v) => unsafe { with(s, |st| f(st, v)) },
+        Err(e) => e,
+    }
+}
+
+/// As [`with_read`] for a vector `p[3]` of C floats.
+///
+/// # Safety
+/// As [`with`]; `p` NULL or 3 readable floats.
+unsafe fn with_vec3(
+    s: *mut quatprop_t,
+    p: *const f32,
+    f: impl FnOnce(&mut Inner, Vec3<f32>) -> Result<(), Fail>,
+) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    unsafe { with_read(s, p.cast::<[f32; 3]>(), |st, v| f(st, vec3(v))) }
 }
 
 /// Runs `f` on the state behind `s` (read only) and writes its result to `out`.
@@ -776,12 +884,7 @@ pub unsafe extern "C" fn quatprop_config_default(out: *mut quatprop_config_t) ->
         input: QUATPROP_INPUT_HISTORY,
         coning: QUATPROP_CONING_TWO_SAMPLE,
         accumulator: QUATPROP_ACCUMULATOR_PLAIN,
-        q0: quatprop_quat_t {
-            w: 1.0,
-            x: 0.0,
-            y: 0.0,
-            z: 0.0,
-        },
+        q0: Quat::IDENTITY.into(),
     };
     // SAFETY: forwarded contract.
     unsafe { write(out, c) }
@@ -797,33 +900,14 @@ pub unsafe extern "C" fn quatprop_init(
     s: *mut quatprop_t,
     config: *const quatprop_config_t,
 ) -> quatprop_status_t {
-    if let Err(e) = check(s) {
-        return e;
-    }
     // SAFETY: forwarded contract.
-    let c = match unsafe { read(config) } {
-        Ok(c) => c,
-        Err(e) => return e,
-    };
-    let choice = Choice {
-        q0: Quat::new(c.q0.w, c.q0.x, c.q0.y, c.q0.z),
-        scheme: c.scheme,
-        stabilizer: c.stabilizer,
-        every: c.every,
-        input: c.input,
-        coning: c.coning,
-        accumulator: c.accumulator,
-    };
-    match Inner::new(&choice)
-        .map_err(status)
-        .and_then(|inner| encode(&inner))
-    {
-        Ok(b) => {
-            // SAFETY: non-null and aligned (checked), writable per the contract.
-            unsafe { put(s, &b) };
-            S::QUATPROP_OK
-        }
-        Err(e) => e,
+    unsafe {
+        init(s, || {
+            let c = read(config)?;
+            Inner::new(&c)
+                .map_err(status)
+                .and_then(|inner| encode(&inner))
+        })
     }
 }
 
@@ -897,13 +981,8 @@ pub unsafe extern "C" fn quatprop_set_alignment_matrix(
     r: *const f32,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let r = match unsafe { read(r.cast::<[[f32; 3]; 3]>()) } {
-        Ok(r) => r,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        with(s, |st| {
+        with_read(s, r.cast::<[[f32; 3]; 3]>(), |st, r| {
             st.front.alignment = Some(Alignment::from_matrix(r)?);
             Ok(())
         })
@@ -973,14 +1052,9 @@ pub unsafe extern "C" fn quatprop_set_fixed_bias(
     b: *const f32,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let b = match unsafe { read(b.cast::<[f32; 3]>()) } {
-        Ok(b) => b,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        with(s, |st| {
-            st.front.bias = Bias::Fixed(FixedBias::new(vec3(b))?);
+        with_vec3(s, b, |st, b| {
+            st.front.bias = Bias::Fixed(FixedBias::new(b)?);
             Ok(())
         })
     }
@@ -1107,16 +1181,11 @@ pub unsafe extern "C" fn quatprop_push_rate(
     dt: f64,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let v = match unsafe { read(sample) } {
-        Ok(v) => v,
-        Err(e) => return e,
-    };
-    let g = GyroSample {
-        rate: vec3([v.x, v.y, v.z]),
-        saturated: v.saturated != 0,
-    };
-    // SAFETY: forwarded contract.
-    unsafe { with(s, |st| one(st.rates(Rates::One(g), Time::Dt(dt as f32)))) }
+    unsafe {
+        with_read(s, sample, |st, v| {
+            one(st.rates(Rates::One(v.rate()), Time::Dt(dt as f32)))
+        })
+    }
 }
 
 /// Pushes one sample of raw counts `counts[3]` (sensor axes: count scale, alignment and bias apply) taken
@@ -1132,13 +1201,8 @@ pub unsafe extern "C" fn quatprop_push_counts(
     dt: f64,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let c = match unsafe { read(counts.cast::<[i16; 3]>()) } {
-        Ok(c) => c,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        with(s, |st| {
+        with_read(s, counts.cast::<[i16; 3]>(), |st, c| {
             let scale = st.front.scale.ok_or(Fail::NotConfigured)?;
             one(st.rates(Rates::One(scale.sample(c)), Time::Dt(dt as f32)))
         })
@@ -1158,16 +1222,11 @@ pub unsafe extern "C" fn quatprop_push_delta(
     dt: f64,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let v = match unsafe { read(sample) } {
-        Ok(v) => v,
-        Err(e) => return e,
-    };
-    let d = DeltaAngle {
-        angle: vec3([v.x, v.y, v.z]),
-        saturated: v.saturated != 0,
-    };
-    // SAFETY: forwarded contract.
-    unsafe { with(s, |st| one(st.deltas(Deltas::One(d), Time::Dt(dt as f32)))) }
+    unsafe {
+        with_read(s, sample, |st, v| {
+            one(st.deltas(Deltas::One(v.delta()), Time::Dt(dt as f32)))
+        })
+    }
 }
 
 /// A one-sample loop's result as a call's.
@@ -1175,20 +1234,28 @@ fn one(r: Result<usize, state::Refusal>) -> Result<(), Fail> {
     r.map(|_| ()).map_err(|(_, f)| f)
 }
 
-/// Runs a burst and reports through `integrated`.
+/// Runs a burst of the `n` samples at `samples` and reports through `integrated`: the samples are
+/// checked first, then `integrated`, then the state is read.
 ///
 /// # Safety
-/// As [`modify`] and [`write`].
-unsafe fn burst(
+/// As [`modify`], [`slice`] and [`write`].
+unsafe fn burst<T>(
     s: *mut quatprop_t,
+    samples: *const T,
+    n: usize,
     integrated: *mut usize,
-    f: impl FnOnce(&mut Inner) -> Result<usize, state::Refusal>,
+    f: impl FnOnce(&mut Inner, &[T]) -> Result<usize, state::Refusal>,
 ) -> quatprop_status_t {
+    // SAFETY: forwarded contract.
+    let fifo = match unsafe { slice(samples, n) } {
+        Ok(f) => f,
+        Err(e) => return e,
+    };
     if let Err(e) = check(integrated) {
         return e;
     }
     // SAFETY: forwarded contract.
-    let (n, status) = match unsafe { modify(s, f) } {
+    let (n, status) = match unsafe { modify(s, |st| f(st, fifo)) } {
         Ok(Ok(n)) => (n, S::QUATPROP_OK),
         Ok(Err((i, fail))) => (i, status(fail)),
         // The state could not be read: nothing is written.
@@ -1220,17 +1287,9 @@ pub unsafe extern "C" fn quatprop_push_counts_burst(
     integrated: *mut usize,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let fifo = match unsafe { slice(counts.cast::<[i16; 3]>(), n) } {
-        Ok(f) => f,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        burst(s, integrated, |st| {
-            let Some(scale) = st.front.scale else {
-                return Err((0, Fail::NotConfigured));
-            };
-            st.rates(Rates::Counts(fifo, scale), Time::Period)
+        burst(s, counts.cast::<[i16; 3]>(), n, integrated, |st, fifo| {
+            st.counts(fifo, Time::Period)
         })
     }
 }
@@ -1257,17 +1316,9 @@ pub unsafe extern "C" fn quatprop_push_counts_burst_timed(
         Err(e) => return e,
     };
     // SAFETY: forwarded contract.
-    let times = match unsafe { slice(timestamps, n) } {
-        Ok(t) => t,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        burst(s, integrated, |st| {
-            let Some(scale) = st.front.scale else {
-                return Err((0, Fail::NotConfigured));
-            };
-            st.rates(Rates::Counts(fifo, scale), Time::Ticks(times))
+        burst(s, timestamps, n, integrated, |st, times| {
+            st.counts(fifo, Time::Ticks(times))
         })
     }
 }
@@ -1286,13 +1337,8 @@ pub unsafe extern "C" fn quatprop_push_rate_burst(
     integrated: *mut usize,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let fifo = match unsafe { slice(samples, n) } {
-        Ok(f) => f,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        burst(s, integrated, |st| {
+        burst(s, samples, n, integrated, |st, fifo| {
             st.rates(Rates::Samples(fifo), Time::Period)
         })
     }
@@ -1312,13 +1358,8 @@ pub unsafe extern "C" fn quatprop_push_delta_burst(
     integrated: *mut usize,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let fifo = match unsafe { slice(samples, n) } {
-        Ok(f) => f,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
     unsafe {
-        burst(s, integrated, |st| {
+        burst(s, samples, n, integrated, |st, fifo| {
             st.deltas(Deltas::Samples(fifo), Time::Period)
         })
     }
@@ -1336,12 +1377,7 @@ pub unsafe extern "C" fn quatprop_rotate_body(
     dtheta: *const f32,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let d = match unsafe { read(dtheta.cast::<[f32; 3]>()) } {
-        Ok(d) => d,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
-    unsafe { with(s, |st| st.rotate(vec3(d), true)) }
+    unsafe { with_vec3(s, dtheta, |st, d| st.rotate(d, true)) }
 }
 
 /// An estimator's attitude correction given in the **reference** frame: `q <- exp(dtheta) (x) q`
@@ -1355,12 +1391,7 @@ pub unsafe extern "C" fn quatprop_rotate_reference(
     dtheta: *const f32,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let d = match unsafe { read(dtheta.cast::<[f32; 3]>()) } {
-        Ok(d) => d,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
-    unsafe { with(s, |st| st.rotate(vec3(d), false)) }
+    unsafe { with_vec3(s, dtheta, |st, d| st.rotate(d, false)) }
 }
 
 /// An estimator's bias correction: the bias subtracted from the rate samples grows by `delta[3]` (rad/s,
@@ -1376,12 +1407,7 @@ pub unsafe extern "C" fn quatprop_correct_bias(
     delta: *const f32,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let d = match unsafe { read(delta.cast::<[f32; 3]>()) } {
-        Ok(d) => d,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
-    unsafe { with(s, |st| st.correct_bias(vec3(d))) }
+    unsafe { with_vec3(s, delta, |st, d| st.correct_bias(d)) }
 }
 
 /// Forgets the samples the input model keeps between steps (after a gap: the next sample starts it
@@ -1410,12 +1436,7 @@ pub unsafe extern "C" fn quatprop_set_attitude(
     q: *const quatprop_quat_t,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    let q = match unsafe { read(q) } {
-        Ok(q) => q,
-        Err(e) => return e,
-    };
-    // SAFETY: forwarded contract.
-    unsafe { with(s, |st| st.set_attitude(Quat::new(q.w, q.x, q.y, q.z))) }
+    unsafe { with_read(s, q, |st, q| st.set_attitude(q.into())) }
 }
 
 /// The attitude (body to reference, Hamilton, scalar first) into `out`.
@@ -1428,17 +1449,7 @@ pub unsafe extern "C" fn quatprop_get_attitude(
     out: *mut quatprop_quat_t,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    unsafe {
-        get(s, out, |st| {
-            let q = st.attitude();
-            quatprop_quat_t {
-                w: q.w,
-                x: q.x,
-                y: q.y,
-                z: q.z,
-            }
-        })
-    }
+    unsafe { get(s, out, |st| st.attitude().into()) }
 }
 
 /// The attitude as aerospace Euler angles (yaw, pitch, roll; Z-Y'-X'') into `out`.
@@ -1451,16 +1462,7 @@ pub unsafe extern "C" fn quatprop_get_euler_zyx(
     out: *mut quatprop_euler_zyx_t,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    unsafe {
-        get(s, out, |st| {
-            let e = st.attitude().to_euler_zyx();
-            quatprop_euler_zyx_t {
-                yaw: e.yaw,
-                pitch: e.pitch,
-                roll: e.roll,
-            }
-        })
-    }
+    unsafe { get(s, out, |st| st.attitude().to_euler_zyx().into()) }
 }
 
 /// The attitude as classical Euler angles (psi, theta, phi; Z-X'-Z'') into `out`.
@@ -1473,16 +1475,7 @@ pub unsafe extern "C" fn quatprop_get_euler_zxz(
     out: *mut quatprop_euler_zxz_t,
 ) -> quatprop_status_t {
     // SAFETY: forwarded contract.
-    unsafe {
-        get(s, out, |st| {
-            let e = st.attitude().to_euler_zxz();
-            quatprop_euler_zxz_t {
-                psi: e.psi,
-                theta: e.theta,
-                phi: e.phi,
-            }
-        })
-    }
+    unsafe { get(s, out, |st| st.attitude().to_euler_zxz().into()) }
 }
 
 /// The normalization error `|q|^2 - 1` of the attitude into `out`.

@@ -10,7 +10,7 @@
 //! scheme × input model × accumulator ([`Configured::visit`]: fewer instructions, far more flash).
 //! docs/c-api.md measures both.
 
-use crate::quatprop_sample_t;
+use crate::{quatprop_config_t, quatprop_sample_t};
 use quatprop::accumulate::Accumulator;
 use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
 use quatprop::frontend::{
@@ -135,54 +135,41 @@ pub struct Inner {
     pub front: FrontEnd,
 }
 
-/// What C chose in `quatprop_config_t`.
-pub struct Choice {
-    pub q0: Quat<f32>,
-    pub scheme: u32,
-    pub stabilizer: u32,
-    pub every: u32,
-    pub input: u32,
-    pub coning: u32,
-    pub accumulator: u32,
-}
-
 /// `ALL[v]`, or `BadEnum`.
 fn nth<K: Copy>(all: &[K], v: u32) -> Result<K, Fail> {
     all.get(v as usize).copied().ok_or(Fail::BadEnum)
 }
 
-impl Choice {
-    /// The core's configuration, the C values in the order of the header's constants.
-    fn config(&self) -> Result<Config, Fail> {
-        Ok(Config {
-            scheme: nth(&SchemeKind::ALL, self.scheme)?,
-            baumgarte_gain: None,
-            input: match self.input {
-                0 => InputKind::Hold,
-                1 => InputKind::Linear,
-                2 => InputKind::History,
-                3 => InputKind::TwiceRate,
-                4 => InputKind::GaussPoints,
-                5 => InputKind::DeltaAngles(nth(&ConingKind::ALL, self.coning)?),
-                _ => return Err(Fail::BadEnum),
-            },
-            stabilizer: match self.stabilizer {
-                0 => StabilizerKind::Off,
-                1 => StabilizerKind::Normalize,
-                2 => StabilizerKind::FirstOrder,
-                3 => StabilizerKind::Every(self.every),
-                _ => return Err(Fail::BadEnum),
-            },
-            accumulator: nth(
-                &[
-                    AccumulatorKind::Plain,
-                    AccumulatorKind::Kahan,
-                    AccumulatorKind::FloatFloat,
-                ],
-                self.accumulator,
-            )?,
-        })
-    }
+/// The core's configuration of what C chose, the C values in the order of the header's constants.
+fn config(c: &quatprop_config_t) -> Result<Config, Fail> {
+    Ok(Config {
+        scheme: nth(&SchemeKind::ALL, c.scheme)?,
+        baumgarte_gain: None,
+        input: match c.input {
+            0 => InputKind::Hold,
+            1 => InputKind::Linear,
+            2 => InputKind::History,
+            3 => InputKind::TwiceRate,
+            4 => InputKind::GaussPoints,
+            5 => InputKind::DeltaAngles(nth(&ConingKind::ALL, c.coning)?),
+            _ => return Err(Fail::BadEnum),
+        },
+        stabilizer: match c.stabilizer {
+            0 => StabilizerKind::Off,
+            1 => StabilizerKind::Normalize,
+            2 => StabilizerKind::FirstOrder,
+            3 => StabilizerKind::Every(c.every),
+            _ => return Err(Fail::BadEnum),
+        },
+        accumulator: nth(
+            &[
+                AccumulatorKind::Plain,
+                AccumulatorKind::Kahan,
+                AccumulatorKind::FloatFloat,
+            ],
+            c.accumulator,
+        )?,
+    })
 }
 
 /// The axis remap with C value `v` (the order of [`AxisRemap::ALL`]).
@@ -214,10 +201,9 @@ impl Rates<'_> {
         match self {
             Rates::One(s) => *s,
             Rates::Counts(c, scale) => scale.sample(c.get(i).copied().unwrap_or_default()),
-            Rates::Samples(s) => s.get(i).map_or(GyroSample::default(), |v| GyroSample {
-                rate: vec3([v.x, v.y, v.z]),
-                saturated: v.saturated != 0,
-            }),
+            Rates::Samples(s) => s
+                .get(i)
+                .map_or(GyroSample::default(), quatprop_sample_t::rate),
         }
     }
 }
@@ -334,6 +320,8 @@ pub struct RateLoop<'a> {
     front: &'a mut FrontEnd,
 }
 
+// Each loop implements both of `Visit`'s methods, the trait's signatures as they stand (one per sample
+// type, each with its bounds); the one a loop does not take refuses the input kind.
 impl Visit<f32> for RateLoop<'_> {
     type Output = Result<usize, Refusal>;
     #[inline(always)]
@@ -417,10 +405,9 @@ impl Visit<f32> for DeltaLoop<'_> {
         for i in 0..n {
             let d = match self.deltas {
                 Deltas::One(d) => d,
-                Deltas::Samples(s) => s.get(i).map_or(DeltaAngle::default(), |v| DeltaAngle {
-                    angle: vec3([v.x, v.y, v.z]),
-                    saturated: v.saturated != 0,
-                }),
+                Deltas::Samples(s) => s
+                    .get(i)
+                    .map_or(DeltaAngle::default(), quatprop_sample_t::delta),
             };
             let front = &*self.front;
             if let Err(e) = self.time.push(p, i, || Ok(align_delta(front, d))) {
@@ -448,9 +435,9 @@ fn visit<V: Visit<f32>>(prop: &mut Configured<f32>, v: V) -> V::Output {
 
 impl Inner {
     /// A propagator as chosen, with an empty front end (no scale, identity alignment, no bias, no time base).
-    pub fn new(c: &Choice) -> Result<Self, Fail> {
+    pub fn new(c: &quatprop_config_t) -> Result<Self, Fail> {
         Ok(Self {
-            prop: c.config()?.build(c.q0)?,
+            prop: config(c)?.build(c.q0.into())?,
             front: FrontEnd::NONE,
         })
     }
@@ -521,6 +508,13 @@ impl Inner {
         )
     }
 
+    /// Raw counts through the count scale, then as [`Inner::rates`]; `NotConfigured` before any sample
+    /// without a count scale.
+    pub fn counts(&mut self, fifo: &[[i16; 3]], time: Time<'_>) -> Result<usize, Refusal> {
+        let scale = self.front.scale.ok_or((0, Fail::NotConfigured))?;
+        self.rates(Rates::Counts(fifo, scale), time)
+    }
+
     /// Delta angles through the alignment, timed by `time` (a given `dt` or the fixed period).
     pub fn deltas(&mut self, deltas: Deltas<'_>, time: Time<'_>) -> Result<usize, Refusal> {
         let time = Timing::of(time, &self.front)?;
@@ -544,6 +538,24 @@ fn align_delta(front: &FrontEnd, d: DeltaAngle<f32>) -> DeltaAngle<f32> {
     DeltaAngle {
         angle: g.rate,
         saturated: g.saturated,
+    }
+}
+
+impl quatprop_sample_t {
+    /// The sample as a rate (rad/s).
+    pub fn rate(&self) -> GyroSample<f32> {
+        GyroSample {
+            rate: vec3([self.x, self.y, self.z]),
+            saturated: self.saturated != 0,
+        }
+    }
+
+    /// The sample as a delta angle (rad).
+    pub fn delta(&self) -> DeltaAngle<f32> {
+        DeltaAngle {
+            angle: vec3([self.x, self.y, self.z]),
+            saturated: self.saturated != 0,
+        }
     }
 }
 

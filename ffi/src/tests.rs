@@ -12,8 +12,8 @@ use quatprop::Vec3;
 /// The largest state: delta angles with the five-sample correction, the float-float accumulator, and every
 /// front-end part (count scale, a matrix alignment, the bias estimator, period and clock), after samples.
 fn largest() -> state::Inner {
-    let choice = Choice {
-        q0: Quat::new(0.5, 0.5, 0.5, 0.5),
+    let config = quatprop_config_t {
+        q0: Quat::new(0.5, 0.5, 0.5, 0.5).into(),
         scheme: QUATPROP_SCHEME_CF4,
         stabilizer: QUATPROP_STABILIZER_EVERY,
         every: u32::MAX,
@@ -21,7 +21,7 @@ fn largest() -> state::Inner {
         coning: QUATPROP_CONING_FIVE_SAMPLE,
         accumulator: QUATPROP_ACCUMULATOR_FLOAT_FLOAT,
     };
-    let mut inner = state::Inner::new(&choice).unwrap();
+    let mut inner = state::Inner::new(&config).unwrap();
     let r = [[0.0, 0.6, 0.8], [-1.0, 0.0, 0.0], [0.0, -0.8, 0.6]];
     inner.front.scale = Some(CountScale::full_scale_dps(2000.0).unwrap());
     inner.front.alignment = Some(Alignment::from_matrix(r).unwrap());

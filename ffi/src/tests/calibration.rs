@@ -11,7 +11,7 @@ use super::super::calibration::{
     quatprop_calibration_estimator_update, Block, MAGIC, PAYLOAD, SUM, TAG,
 };
 use super::super::*;
-use super::check::{bit_syndromes, flip, rank, Rng};
+use super::check::{bit_syndromes, rank, single_bits_and_pairs, Rng};
 use quatprop::frontend::CalibrationEstimator;
 use quatprop::Vec3;
 use std::collections::HashSet;
@@ -328,12 +328,7 @@ fn the_calibration_handed_to_a_state_corrects_as_the_estimator() {
         input: QUATPROP_INPUT_HOLD,
         coning: 0,
         accumulator: QUATPROP_ACCUMULATOR_PLAIN,
-        q0: quatprop_quat_t {
-            w: 1.0,
-            x: 0.0,
-            y: 0.0,
-            z: 0.0,
-        },
+        q0: Quat::IDENTITY.into(),
     };
     // SAFETY: pointers to live locals of the right size.
     unsafe {
@@ -657,25 +652,11 @@ fn the_entry_points_refuse_damaged_blocks_and_change_nothing() {
     let mut rng = Rng(7);
     let mut calls = 0usize;
     for (name, b) in blocks() {
-        let mut damaged: Vec<Block> = Vec::new();
-        for i in 0..BITS {
-            let mut c = b;
-            flip(&mut c, i);
-            damaged.push(c);
-        }
+        let mut damaged = single_bits_and_pairs(&b, &mut rng, 2048);
         for k in 0..SIZE {
             let mut c = b;
             c[k] ^= 0xff;
             damaged.push(c);
-        }
-        for _ in 0..2048 {
-            let (i, j) = (rng.below(BITS), rng.below(BITS));
-            if i != j {
-                let mut c = b;
-                flip(&mut c, i);
-                flip(&mut c, j);
-                damaged.push(c);
-            }
         }
         let (r, a) = ([0.1_f32, 0.2, 0.3], [0.0_f32, 0.0, 9.81]);
         for c in &damaged {

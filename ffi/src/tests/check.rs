@@ -38,6 +38,32 @@ pub(super) fn flip<const N: usize>(b: &mut [u8; N], bit: usize) {
     b[bit / 8] ^= 1 << (bit % 8);
 }
 
+/// `b` with each of its bits flipped in turn, then with `pairs` random pairs of bits flipped (a pair that
+/// draws the same bit twice is skipped): the damaged blocks the entry-point tests start from.
+pub(super) fn single_bits_and_pairs<const N: usize>(
+    b: &[u8; N],
+    rng: &mut Rng,
+    pairs: usize,
+) -> Vec<[u8; N]> {
+    let bits = 8 * N;
+    let mut damaged = Vec::new();
+    for i in 0..bits {
+        let mut c = *b;
+        flip(&mut c, i);
+        damaged.push(c);
+    }
+    for _ in 0..pairs {
+        let (i, j) = (rng.below(bits), rng.below(bits));
+        if i != j {
+            let mut c = *b;
+            flip(&mut c, i);
+            flip(&mut c, j);
+            damaged.push(c);
+        }
+    }
+    damaged
+}
+
 /// The syndrome of each single flipped bit of the sealed block `b` (of any size: "CRC of the data xor the
 /// stored CRC", zero for `b` itself), after checking on `errors` random errors of 1 to 40 bits (from
 /// `seed`) that the code is linear: a random error's syndrome is the xor of its bits'.
@@ -89,12 +115,7 @@ fn quick_start() -> Block {
         input: 0,
         coning: 0,
         accumulator: 0,
-        q0: quatprop_quat_t {
-            w: 1.0,
-            x: 0.0,
-            y: 0.0,
-            z: 0.0,
-        },
+        q0: Quat::IDENTITY.into(),
     };
     let fifo: Vec<[i16; 3]> = (0..32).map(|i| [10 + i, -20, 30 - 2 * i]).collect();
     let mut n = 0;
@@ -415,21 +436,7 @@ fn the_entry_points_refuse_damaged_states_and_change_nothing() {
     let mut rng = Rng(5);
     let mut calls = 0;
     for (name, b) in configurations() {
-        let mut damaged: Vec<Block> = Vec::new();
-        for i in 0..BITS {
-            let mut c = b;
-            flip(&mut c, i);
-            damaged.push(c);
-        }
-        for _ in 0..4096 {
-            let (i, j) = (rng.below(BITS), rng.below(BITS));
-            if i != j {
-                let mut c = b;
-                flip(&mut c, i);
-                flip(&mut c, j);
-                damaged.push(c);
-            }
-        }
+        let mut damaged = single_bits_and_pairs(&b, &mut rng, 4096);
         for _ in 0..1024 {
             let mut c = b;
             let at = rng.below(QUATPROP_STATE_SIZE - 8);
