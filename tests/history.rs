@@ -8,17 +8,7 @@ use quatprop::input::{History, Hold};
 use quatprop::scheme::{ExpMap, SchemeKind};
 use quatprop::stabilize::Off;
 use quatprop::{GyroSample, Propagator, Vec3};
-use support::{loglog_slope, propagate, Coning, Input};
-
-/// Attitude error after `t_end` with one sample per step: `History` (primed with the samples before t = 0,
-/// as for a gyro that was already running, so every step in [0, t_end] is a full cubic step) or `Linear`.
-fn error(m: SchemeKind, input: Input, n: usize, t_end: f64) -> f64 {
-    let c = Coning::STANDARD;
-    let q = propagate::<f64, _, _>(m, Off, input, c.attitude(0.0), &|t| c.rate(t), t_end, n)
-        .unwrap()
-        .q;
-    q.normalized().unwrap().angle_to(c.attitude(t_end))
-}
+use support::{assert_history_is_fourth_order, coning_error, convergence, Coning, Input};
 
 #[test]
 fn sample_history_reaches_order_four_with_one_sample_per_step() {
@@ -31,25 +21,15 @@ fn sample_history_reaches_order_four_with_one_sample_per_step() {
         bare.push(GyroSample::new((w0 + w1) * 0.5), 0.01).unwrap();
     }
     let bare = bare.attitude().angle_to(c.attitude(1.0));
-    let linear = error(SchemeKind::ExpMap, Input::Linear, 100, 1.0);
-    let hist = error(SchemeKind::ExpMap, Input::History, 100, 1.0);
+    let linear = coning_error(SchemeKind::ExpMap, Input::Linear, 100, 1.0);
+    let hist = coning_error(SchemeKind::ExpMap, Input::History, 100, 1.0);
     println!(
         "1 s at 100 Hz: trapezoid exp map {bare:.2e} rad, with commutator {linear:.2e}, sample history {hist:.2e}"
     );
     assert!((bare / 3.6e-4 - 1.0).abs() < 0.05, "{bare:e}");
     assert!((hist / 2.3e-7 - 1.0).abs() < 0.05, "{hist:e}");
     assert!(hist < linear / 500.0);
-    for m in [SchemeKind::ExpMap, SchemeKind::Rk4] {
-        let ns = [50usize, 100, 200, 400];
-        let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
-        let es: Vec<f64> = ns
-            .iter()
-            .map(|&n| error(m, Input::History, n, 0.7))
-            .collect();
-        let slope = loglog_slope(&hs, &es);
-        println!("{m:?} with sample history: errors {es:?}, order {slope:.3}");
-        assert!((slope - 4.0).abs() < 0.15, "{m:?}: order {slope}");
-    }
+    assert_history_is_fourth_order(&[SchemeKind::ExpMap, SchemeKind::Rk4], &[50, 100, 200, 400]);
 }
 
 #[test]
@@ -116,14 +96,12 @@ fn a_cold_start_is_fourth_order_over_the_horizon() {
     // The first step is linear (local error O(h³)); the quadratic step after it carries the correction,
     // so the horizon's error falls as h⁴ like the primed history's (0.2 fell as h³: slope 3.0).
     let ns = [50usize, 100, 200, 400];
-    let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
-    let es: Vec<f64> = ns.iter().map(|&n| cold(n, &[])).collect();
-    let slope = loglog_slope(&hs, &es);
+    let (es, slope) = convergence(0.7, &ns, |n| cold(n, &[]));
     println!("cold-started history: errors {es:?}, order {slope:.3}");
     assert!((slope - 4.0).abs() < 0.1, "order {slope}");
     // Within a factor of the primed history's error (which has no start-up at all).
     for (&n, &e) in ns.iter().zip(&es) {
-        let primed = error(SchemeKind::ExpMap, Input::History, n, 0.7);
+        let primed = coning_error(SchemeKind::ExpMap, Input::History, n, 0.7);
         assert!(e < 3.0 * primed, "n = {n}: {e:e} against primed {primed:e}");
     }
 }
@@ -134,10 +112,7 @@ fn a_refused_sample_keeps_the_fourth_order() {
     // the samples' true times (no restart: 2h is below History::GAP_RATIO).
     // From 100 steps on: at 50 the spanned 2h interval's higher-order term still shows (ratio 19.5 to
     // the next, then 17.8, 16.9, 16.5).
-    let ns = [100usize, 200, 400, 800];
-    let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
-    let es: Vec<f64> = ns.iter().map(|&n| cold(n, &[0.35])).collect();
-    let slope = loglog_slope(&hs, &es);
+    let (es, slope) = convergence(0.7, &[100, 200, 400, 800], |n| cold(n, &[0.35]));
     println!("refused sample: errors {es:?}, order {slope:.3}");
     assert!((slope - 4.0).abs() < 0.1, "order {slope}");
 }
@@ -148,9 +123,7 @@ fn after_a_gap_the_history_is_fourth_order_again() {
     // linearly over its true length (third order: nothing is known of ω inside it). What follows is a
     // fresh start: the rotation from the gap's end to the horizon converges at fourth order.
     let c = Coning::STANDARD;
-    let ns = [50usize, 100, 200, 400];
-    let mut es = Vec::new();
-    for &n in &ns {
+    let (es, slope) = convergence(0.7, &[50, 100, 200, 400], |n| {
         let h = 0.7 / n as f64;
         let gap_end = n / 2;
         let mut p = Propagator::new(c.attitude(0.0), ExpMap, History::new(), Off).unwrap();
@@ -172,10 +145,8 @@ fn after_a_gap_the_history_is_fourth_order_again() {
         // The rotation made after the gap against the motion's.
         let made = at_gap.conjugate() * p.attitude();
         let truth = c.attitude(t_end_of_gap).conjugate() * c.attitude(0.7);
-        es.push(made.angle_to(truth));
-    }
-    let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
-    let slope = loglog_slope(&hs, &es);
+        made.angle_to(truth)
+    });
     println!("after a gap: errors {es:?}, order {slope:.3}");
     assert!((slope - 4.0).abs() < 0.1, "order {slope}");
 }

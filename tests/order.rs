@@ -38,18 +38,40 @@ struct Errors {
     attitude: f64,
 }
 
-fn run(
-    m: SchemeKind,
-    input: Input,
-    reference: &dyn Fn(f64) -> Quat<f64>,
-    rate: &dyn Fn(f64) -> Vec3<f64>,
+/// A motion over `[0, t_end]`: its exact attitude and its body rate at each time.
+struct Scene {
+    reference: Box<dyn Fn(f64) -> Quat<f64>>,
+    rate: Box<dyn Fn(f64) -> Vec3<f64>>,
     t_end: f64,
-    n: usize,
-) -> Errors {
-    let q = propagate::<f64, _, _>(m, Off, input, reference(0.0), rate, t_end, n)
+}
+
+/// The standard coning motion over `CONING_T_END`.
+fn coning_scene() -> Scene {
+    let c = Coning::STANDARD;
+    Scene {
+        reference: Box::new(move |t| c.attitude(t)),
+        rate: Box::new(move |t| c.rate(t)),
+        t_end: CONING_T_END,
+    }
+}
+
+/// A constant rate (|ω| ≈ 3.49 rad/s) from a tilted start, over 1.3 s.
+fn constant_scene() -> Scene {
+    let w = Vec3::new(1.2_f64, -2.0, 2.6);
+    let q0 = Quat::new(0.9_f64, 0.1, -0.3, 0.2).normalized().unwrap();
+    Scene {
+        reference: Box::new(move |t| q0 * Quat::from_rotation_vector(w * t)),
+        rate: Box::new(move |_| w),
+        t_end: 1.3,
+    }
+}
+
+fn run(m: SchemeKind, input: Input, scene: &Scene, n: usize) -> Errors {
+    let t_end = scene.t_end;
+    let q = propagate::<f64, _, _>(m, Off, input, (scene.reference)(0.0), &scene.rate, t_end, n)
         .unwrap()
         .q;
-    let r = reference(t_end);
+    let r = (scene.reference)(t_end);
     Errors {
         quaternion: (q - r).norm().min((q + r).norm()),
         attitude: q.normalized().unwrap().angle_to(r),
@@ -58,22 +80,16 @@ fn run(
 
 /// Fits the slopes (quaternion, attitude) over step counts 2²…2¹⁴ whose errors fall in the window; each
 /// fit needs at least 3 points.
-fn measured_orders(
-    m: SchemeKind,
-    input: Input,
-    reference: &dyn Fn(f64) -> Quat<f64>,
-    rate: &dyn Fn(f64) -> Vec3<f64>,
-    t_end: f64,
-) -> (f64, f64) {
+fn measured_orders(m: SchemeKind, input: Input, scene: &Scene) -> (f64, f64) {
     let limit = m.information().step_angle_limit;
     let mut points: [(Vec<f64>, Vec<f64>); 2] = Default::default();
     for k in 2..=14 {
         let n = 1usize << k;
-        let h = t_end / n as f64;
+        let h = scene.t_end / n as f64;
         if h * MAX_RATE > limit {
             continue; // stay inside the stability bound
         }
-        let e = run(m, input, reference, rate, t_end, n);
+        let e = run(m, input, scene, n);
         for (e, (hs, es)) in [e.quaternion, e.attitude]
             .into_iter()
             .zip(points.iter_mut())
@@ -157,24 +173,18 @@ fn check(label: &str, m: SchemeKind, input: Input, got: (f64, f64), want: (f64, 
 
 #[test]
 fn order_on_coning_every_scheme_and_input_model() {
-    let c = Coning::STANDARD;
+    let coning = coning_scene();
     for m in SchemeKind::ALL {
         for input in Input::ALL {
-            let got = measured_orders(m, input, &|t| c.attitude(t), &|t| c.rate(t), CONING_T_END);
+            let got = measured_orders(m, input, &coning);
             check("coning", m, input, got, expected_coning(m, input));
         }
     }
 }
 
-fn constant_scene() -> (Vec3<f64>, impl Fn(f64) -> Quat<f64>) {
-    let w = Vec3::new(1.2_f64, -2.0, 2.6); // |ω| ≈ 3.49 rad/s
-    let q0 = Quat::new(0.9_f64, 0.1, -0.3, 0.2).normalized().unwrap();
-    (w, move |t: f64| q0 * Quat::from_rotation_vector(w * t))
-}
-
 #[test]
 fn order_on_constant_rate_every_scheme_and_input_model() {
-    let (w, reference) = constant_scene();
+    let constant = constant_scene();
     for m in SchemeKind::ALL {
         for input in Input::ALL {
             if m.information().step_angle_limit.is_infinite() {
@@ -182,7 +192,7 @@ fn order_on_constant_rate_every_scheme_and_input_model() {
                 // rounds the four components (≤ ε/2 each) in the product and the addition, a few ε per
                 // step; 64ε per step bounds it with room for the History prelude's set_attitude.
                 for n in [3usize, 17, 100] {
-                    let e = run(m, input, &reference, &|_| w, 1.3, n);
+                    let e = run(m, input, &constant, n);
                     assert!(
                         e.quaternion < 64.0 * f64::EPSILON * n as f64,
                         "{m:?} {input:?} {n}: {}",
@@ -191,7 +201,7 @@ fn order_on_constant_rate_every_scheme_and_input_model() {
                 }
                 continue;
             }
-            let got = measured_orders(m, input, &reference, &|_| w, 1.3);
+            let got = measured_orders(m, input, &constant);
             check("constant", m, input, got, expected_constant(m));
         }
     }
@@ -202,21 +212,13 @@ fn order_on_constant_rate_every_scheme_and_input_model() {
 /// order reached with a fourth-order input model on a varying rate. Each must be what is measured.
 #[test]
 fn information_order_is_the_measured_order() {
-    let (w, reference) = constant_scene();
-    let c = Coning::STANDARD;
+    let (constant, coning) = (constant_scene(), coning_scene());
     for m in SchemeKind::ALL {
         let info = m.information();
         let measured = if info.step_angle_limit.is_finite() {
-            measured_orders(m, Input::Hold, &reference, &|_| w, 1.3).0
+            measured_orders(m, Input::Hold, &constant).0
         } else {
-            measured_orders(
-                m,
-                Input::TwiceRate,
-                &|t| c.attitude(t),
-                &|t| c.rate(t),
-                CONING_T_END,
-            )
-            .0
+            measured_orders(m, Input::TwiceRate, &coning).0
         };
         println!(
             "{}: Information::order {}, measured {measured:.3}",

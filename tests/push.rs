@@ -8,7 +8,7 @@ use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linea
 use quatprop::scheme::{Baumgarte, Euler, ExpMap, Rk4, Scheme, SchemeKind};
 use quatprop::stabilize::{Every, FirstOrder, Off, StabilizerKind};
 use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Vec3};
-use support::{loglog_slope, propagate, state, Coning, Input};
+use support::{assert_history_is_fourth_order, convergence, state, Coning};
 
 /// A smooth test rate (rad/s) at sample `k`.
 fn rate(k: usize) -> Vec3<f64> {
@@ -215,31 +215,8 @@ fn history_spans_a_refused_interval_and_restarts_on_a_gap_with_a_linear_step_ove
 
 #[test]
 fn history_step_order_is_four_at_equal_spacing() {
-    let c = Coning::STANDARD;
-    for m in [SchemeKind::ExpMap, SchemeKind::Rk4, SchemeKind::Cf4] {
-        let ns = [40usize, 80, 160, 320];
-        let hs: Vec<f64> = ns.iter().map(|&n| 0.7 / n as f64).collect();
-        let es: Vec<f64> = ns
-            .iter()
-            .map(|&n| {
-                let q = propagate::<f64, _, _>(
-                    m,
-                    Off,
-                    Input::History,
-                    c.attitude(0.0),
-                    &|t| c.rate(t),
-                    0.7,
-                    n,
-                )
-                .unwrap()
-                .q;
-                q.normalized().unwrap().angle_to(c.attitude(0.7))
-            })
-            .collect();
-        let slope = loglog_slope(&hs, &es);
-        println!("{m:?} History: {es:?}, order {slope:.3}");
-        assert!((slope - 4.0).abs() < 0.15, "{m:?}: {slope}");
-    }
+    let schemes = [SchemeKind::ExpMap, SchemeKind::Rk4, SchemeKind::Cf4];
+    assert_history_is_fourth_order(&schemes, &[40, 80, 160, 320]);
 }
 
 /// With every 8th interval longer: up to two periods (jitter, a dropped or refused sample) the cubic spans
@@ -256,9 +233,7 @@ fn history_keeps_fourth_order_under_jitter_and_dropped_samples_and_restarts_at_g
     // sample (both within History::GAP_RATIO): the cubic through the samples at their true times, no
     // restart, order 4. 3 h is a gap: restarts on entering and on leaving it, order 2.
     for (stretch, restarts_per, order) in [(1.3, 0usize, 4.0), (2.0, 0, 4.0), (3.0, 2, 2.0)] {
-        let mut hs = Vec::new();
-        let mut es = Vec::new();
-        for n in [64usize, 128, 256, 512] {
+        let (es, slope) = convergence(0.7, &[64, 128, 256, 512], |n| {
             let h = 0.7 / n as f64;
             // Pre-fill the history with the samples at −3h … 0 and reset the attitude to the exact one, so
             // the start-up's linear and quadratic steps (local errors h³, h⁴) do not mask the order.
@@ -281,10 +256,8 @@ fn history_keeps_fourth_order_under_jitter_and_dropped_samples_and_restarts_at_g
             }
             let expected = restarts_per * (n / 8) - usize::from(restarts_per > 0);
             assert_eq!(restarts, expected, "stretch {stretch}, n = {n}");
-            hs.push(h);
-            es.push(p.attitude().angle_to(c.attitude(t)));
-        }
-        let slope = loglog_slope(&hs, &es);
+            p.attitude().angle_to(c.attitude(t))
+        });
         println!("History with every 8th interval {stretch} h: {es:?}, order {slope:.3}");
         assert!(
             (slope - order).abs() < 0.15,

@@ -2,8 +2,8 @@
 #![allow(dead_code)]
 
 use quatprop::input::{GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use quatprop::scheme::Scheme;
-use quatprop::stabilize::Stabilizer;
+use quatprop::scheme::{Scheme, SchemeKind};
+use quatprop::stabilize::{Off, Stabilizer};
 use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
 
 /// `√3/6`: half the distance between the two Gauss–Legendre nodes on [0, 1] (typed here independently of the
@@ -98,14 +98,26 @@ pub struct Outcome<T> {
     pub steps: u64,
 }
 
-fn drive<T: Real, S: Scheme<T>, I: InputModel<T, Sample = GyroSample<T>>, Z: Stabilizer>(
-    mut p: Propagator<T, S, I, Z>,
+/// What [`propagate`] runs: `n` steps of `input` over `[0, t_end]` from `q0`, sampling `rate`.
+struct Run<'a> {
     input: Input,
     q0: Quat<f64>,
-    rate: &dyn Fn(f64) -> Vec3<f64>,
+    rate: &'a dyn Fn(f64) -> Vec3<f64>,
     t_end: f64,
     n: usize,
+}
+
+fn drive<T: Real, S: Scheme<T>, I: InputModel<T, Sample = GyroSample<T>>, Z: Stabilizer>(
+    mut p: Propagator<T, S, I, Z>,
+    run: &Run,
 ) -> Result<Outcome<T>, Error> {
+    let Run {
+        input,
+        q0,
+        rate,
+        t_end,
+        n,
+    } = *run;
     let h = t_end / n as f64;
     let push = |p: &mut Propagator<T, S, I, Z>, (t, dt): (f64, f64)| {
         p.push(
@@ -143,17 +155,17 @@ pub fn propagate<T: Real, S: Scheme<T>, Z: Stabilizer>(
     n: usize,
 ) -> Result<Outcome<T>, Error> {
     let q = Quat::<T>::from_f64(q0);
+    let run = Run {
+        input,
+        q0,
+        rate,
+        t_end,
+        n,
+    };
     // One propagator type per input model: each arm drives its own.
     macro_rules! drive_with {
         ($model:expr) => {
-            drive(
-                Propagator::new(q, scheme, $model, stabilizer)?,
-                input,
-                q0,
-                rate,
-                t_end,
-                n,
-            )
+            drive(Propagator::new(q, scheme, $model, stabilizer)?, &run)
         };
     }
     match input {
@@ -175,6 +187,48 @@ pub fn loglog_slope(hs: &[f64], errs: &[f64]) -> f64 {
     let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
     sxy / sxx
+}
+
+/// How an error converges over `[0, t_end]`: `error(n)` for each step count `n` of `ns`, and the measured
+/// order, the [`loglog_slope`] of those errors against the step `t_end / n`.
+pub fn convergence(
+    t_end: f64,
+    ns: &[usize],
+    mut error: impl FnMut(usize) -> f64,
+) -> (Vec<f64>, f64) {
+    let hs: Vec<f64> = ns.iter().map(|&n| t_end / n as f64).collect();
+    let es: Vec<f64> = ns.iter().map(|&n| error(n)).collect();
+    let slope = loglog_slope(&hs, &es);
+    (es, slope)
+}
+
+/// The attitude error (rad) after `n` steps of `input` over `[0, t_end]` of [`Coning::STANDARD`], in f64
+/// without a stabilizer: the angle from the normalized result to the exact attitude.
+pub fn coning_error(scheme: SchemeKind, input: Input, n: usize, t_end: f64) -> f64 {
+    let c = Coning::STANDARD;
+    let q = propagate::<f64, _, _>(
+        scheme,
+        Off,
+        input,
+        c.attitude(0.0),
+        &|t| c.rate(t),
+        t_end,
+        n,
+    )
+    .unwrap()
+    .q;
+    q.normalized().unwrap().angle_to(c.attitude(t_end))
+}
+
+/// Asserts that the (primed) sample history is fourth order, within ±0.15, with each of `schemes`: the order
+/// measured from the [`coning_error`]s over 0.7 s (not a whole number of coning periods) at the step
+/// counts `ns`.
+pub fn assert_history_is_fourth_order(schemes: &[SchemeKind], ns: &[usize]) {
+    for &m in schemes {
+        let (es, slope) = convergence(0.7, ns, |n| coning_error(m, Input::History, n, 0.7));
+        println!("{m:?} with sample history: errors {es:?}, order {slope:.3}");
+        assert!((slope - 4.0).abs() < 0.15, "{m:?}: order {slope}");
+    }
 }
 
 /// The whole propagator state as text: `Debug` prints every field, private ones included, and prints each
