@@ -771,8 +771,10 @@ type Updated<'py, T> = (
     RefusedInfo,
 );
 
-/// One call's arrays as Python passes them: rates, timestamps (seconds or ticks), accelerations and
-/// temperatures.
+/// One call's arrays as Python passes them, a dict by field name: rates (in the stream's precision, or
+/// raw counts), timestamps (seconds or ticks), accelerations and temperatures.
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
 struct Arrays<'py, T: numpy::Element> {
     gyr: PyReadonlyArray2<'py, T>,
     counts: Option<PyReadonlyArray2<'py, i16>>,
@@ -920,30 +922,15 @@ impl NativeStream {
         })
     }
 
-    /// Rows of samples into the stream, in its precision (`gyr`, `acc` and `temperature` are float32
-    /// arrays for an f32 stream, float64 for an f64 one); the result as [`Updated`].
-    #[pyo3(signature = (gyr, t=None, ticks=None, acc=None, temperature=None, counts=None))]
-    #[allow(clippy::too_many_arguments)]
+    /// Rows of samples into the stream: `arrays` as [`Arrays`] names them, in the stream's precision; the
+    /// result as [`Updated`].
     fn update<'py>(
         &mut self,
         py: Python<'py>,
-        gyr: Bound<'py, PyAny>,
-        t: Option<PyReadonlyArray1<'py, f64>>,
-        ticks: Option<PyReadonlyArray1<'py, u32>>,
-        acc: Option<Bound<'py, PyAny>>,
-        temperature: Option<Bound<'py, PyAny>>,
-        counts: Option<PyReadonlyArray2<'py, i16>>,
+        arrays: Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         with_session!(&mut self.now, s => {
-            let arrays = Arrays {
-                gyr: gyr.extract()?,
-                counts,
-                t,
-                ticks,
-                acc: acc.map(|a| a.extract()).transpose()?,
-                temperature: temperature.map(|a| a.extract()).transpose()?,
-            };
-            update(py, s, self.mask, arrays)?.into_bound_py_any(py)
+            update(py, s, self.mask, arrays.extract()?)?.into_bound_py_any(py)
         })
     }
 

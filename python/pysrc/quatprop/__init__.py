@@ -665,7 +665,8 @@ class Stream:
         dtype = _DTYPES[self._precision]
         acc_arr = None if acc is None else _array("acc", acc, dtype, 2, 3)
         temp_arr = None if temperature is None else _array("temperature", temperature, dtype, 1)
-        q, mask, refused = self._native.update(gyr, t_arr, tick_arr, acc_arr, temp_arr, counts)
+        arrays = dict(gyr=gyr, t=t_arr, ticks=tick_arr, acc=acc_arr, temperature=temp_arr, counts=counts)
+        q, mask, refused = self._native.update(arrays)
         if refused is not None:
             raise RefusedSample(*refused)
         if self._mask:
