@@ -70,6 +70,21 @@ fn tumble(
     }
 }
 
+/// The estimator of these tests at `dt`: the datasheet's priors (±1 % on each scale, ±0.5° = 0.0087 rad on
+/// each cross-axis term) and a motion noise of 0.01° per sample.
+fn datasheet_estimator<T: Real>(dt: f64) -> CalibrationEstimator<T> {
+    CalibrationEstimator::with_motion_noise(dt, 0.01, 0.0087, 0.01_f64.to_radians()).unwrap()
+}
+
+/// Feeds `est` a [`tumble`] of `seconds` with a consumer MEMS gyro's noise (0.005 rad/s per sample) and
+/// 0.05 m/s² on the accelerometer, each reading rounded to the estimator's precision.
+fn tumble_into<T: Real>(est: &mut CalibrationEstimator<T>, seconds: f64, dt: f64) {
+    tumble(seconds, dt, 0.005, 0.05, |r, a| {
+        est.update(Vec3::from_f64(r), Vec3::from_f64(a), T::from_f64(dt))
+            .unwrap()
+    });
+}
+
 fn largest_error<T: Real>(est: &CalibrationEstimator<T>) -> f64 {
     let g = est.gain();
     (0..9)
@@ -82,11 +97,9 @@ fn it_learns_every_term_of_the_gain_of_a_tumbling_sensor() {
     // 100 Hz, 5 min, a consumer MEMS gyro's noise (0.005 rad/s per sample at 100 Hz: 0.03 °/√s) and
     // 0.05 m/s² on the accelerometer; the priors are the datasheet's ±1 % and ±0.5°.
     let dt = 0.01;
-    let mut est =
-        CalibrationEstimator::<f64>::with_motion_noise(dt, 0.01, 0.0087, 0.01_f64.to_radians())
-            .unwrap();
+    let mut est = datasheet_estimator::<f64>(dt);
     let start = largest_error(&est);
-    tumble(300.0, dt, 0.005, 0.05, |r, a| est.update(r, a, dt).unwrap());
+    tumble_into(&mut est, 300.0, dt);
     let end = largest_error(&est);
     println!("largest gain error: {start:.2e} at the start, {end:.2e} after 5 min");
     println!("std dev: {:?}", est.gain_std_dev());
@@ -109,14 +122,11 @@ fn it_learns_every_term_of_the_gain_of_a_tumbling_sensor() {
 #[test]
 fn it_learns_the_gain_in_f32_as_in_f64() {
     let dt = 0.01;
-    let noise = 0.01_f64.to_radians();
-    let mut e32 = CalibrationEstimator::<f32>::with_motion_noise(dt, 0.01, 0.0087, noise).unwrap();
-    let mut e64 = CalibrationEstimator::<f64>::with_motion_noise(dt, 0.01, 0.0087, noise).unwrap();
-    tumble(300.0, dt, 0.005, 0.05, |r, a| {
-        let f = |v: Vec3<f64>| Vec3::new(v.x as f32, v.y as f32, v.z as f32);
-        e32.update(f(r), f(a), dt as f32).unwrap();
-        e64.update(r, a, dt).unwrap();
-    });
+    // The same tumble (the noise's seed is fixed) into each.
+    let mut e32 = datasheet_estimator::<f32>(dt);
+    let mut e64 = datasheet_estimator::<f64>(dt);
+    tumble_into(&mut e32, 300.0, dt);
+    tumble_into(&mut e64, 300.0, dt);
     let (g32, g64) = (e32.gain(), e64.gain());
     let apart = (0..9)
         .map(|k| (f64::from(g32[k / 3][k % 3]) - g64[k / 3][k % 3]).abs())
@@ -138,9 +148,7 @@ fn a_turn_about_the_vertical_shows_only_the_terms_it_can() {
     // the z reading: the filter cannot tell them from the z column's terms, and learns only what this
     // motion shows, a correction that takes the reading to a turn about z alone.
     let dt = 0.01;
-    let mut est =
-        CalibrationEstimator::<f64>::with_motion_noise(dt, 0.01, 0.0087, 0.01_f64.to_radians())
-            .unwrap();
+    let mut est = datasheet_estimator::<f64>(dt);
     let mut q = Quat::<f64>::IDENTITY;
     for k in 0..30_000 {
         let w = Vec3::new(0.0, 0.0, 1.0 + 0.5 * (k as f64 * dt * 0.3).sin());
@@ -173,13 +181,8 @@ fn a_turn_about_the_vertical_shows_only_the_terms_it_can() {
 #[test]
 fn its_correction_is_the_calibration_it_hands_over() {
     let dt = 0.01;
-    let mut est =
-        CalibrationEstimator::<f32>::with_motion_noise(dt, 0.01, 0.0087, 0.01_f64.to_radians())
-            .unwrap();
-    tumble(60.0, dt, 0.005, 0.05, |r, a| {
-        let f = |v: Vec3<f64>| Vec3::new(v.x as f32, v.y as f32, v.z as f32);
-        est.update(f(r), f(a), dt as f32).unwrap();
-    });
+    let mut est = datasheet_estimator::<f32>(dt);
+    tumble_into(&mut est, 60.0, dt);
     let cal = est.calibration();
     let again = Calibration::new(cal.offset(), cal.sensitivity(), cal.misalignment()).unwrap();
     for s in [Vec3::new(1.0_f32, -2.0, 0.5), Vec3::new(-3.0, 0.25, 7.0)] {
@@ -199,10 +202,7 @@ fn its_correction_is_the_calibration_it_hands_over() {
 fn bad_input_is_refused_and_leaves_it_unchanged() {
     let dt = 0.01;
     let mut est = CalibrationEstimator::<f32>::new(dt, 0.01, 0.0087).unwrap();
-    tumble(5.0, dt, 0.005, 0.05, |r, a| {
-        let f = |v: Vec3<f64>| Vec3::new(v.x as f32, v.y as f32, v.z as f32);
-        est.update(f(r), f(a), dt as f32).unwrap();
-    });
+    tumble_into(&mut est, 5.0, dt);
     let before = est;
     let (w, a) = (Vec3::new(0.1_f32, 0.2, 0.3), Vec3::new(0.0_f32, 0.0, 9.81));
     assert_eq!(
