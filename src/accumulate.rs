@@ -35,7 +35,8 @@ pub trait Accumulator<T: Real>: Copy + sealed::Sealed {
     fn add(&mut self, q: Quat<T>, d: Quat<T>) -> Quat<T>;
 
     /// Advances `q` by one step of `scheme` over `segment` (length `h`, s): by default
-    /// `add(q, scheme.increment(q, segment, h))`.
+    /// `add(q, scheme.increment(q, segment, h))`. ([`FloatFloat`] overrides it, repeating the signature:
+    /// it multiplies by the scheme's right factor instead.)
     #[inline(always)]
     fn advance<S: Scheme<T>, G: Segment<T>>(
         &mut self,

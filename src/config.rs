@@ -489,7 +489,8 @@ fn of_kind<Y>(
 }
 
 /// What [`Configured`]'s own calls do on the static propagator, written once for both sample kinds
-/// (a [`Visit`] through [`Either`]).
+/// (a [`Visit`] through [`Either`]). Each call is a struct and an impl of this trait (a closure cannot be
+/// generic over the propagator's types), so the impls below repeat its signature's shape.
 trait Op<T: Real> {
     type Output;
     fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(

@@ -245,6 +245,9 @@ impl<T: Real> Quat<T> {
         }
     }
 
+    // The Z-X-Z pair below mirrors the Z-Y-X pair above in shape (the constructor from three half-angle
+    // factors, the extractor from the components); each convention's formulas are its own.
+
     /// Quaternion of classical Z-X-Z Euler angles (rad): `qz(psi) ⊗ qx(theta) ⊗ qz(phi)`.
     ///
     /// ```

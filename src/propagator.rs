@@ -275,7 +275,8 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
     }
 
     /// A propagator from its parts, as [`Propagator::into_parts`] returns them (no validation: the parts
-    /// come from a propagator or from a validated [`crate::config::Config`]).
+    /// come from a propagator or from a validated [`crate::config::Config`]). Its parameters are the
+    /// struct's fields, in their order.
     #[inline(always)]
     pub(crate) fn from_parts(
         q: Quat<T>,

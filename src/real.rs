@@ -214,6 +214,7 @@ macro_rules! impl_real {
             fn to_f64(self) -> f64 {
                 self as f64
             }
+            // As in `sealed::Float` above: the public functions' forwarding, alike in shape.
             forward! {
                 fn sqrt(self) => $sqrt;
                 fn sin(self) => $sin;

@@ -20,6 +20,8 @@ pub struct Transition<T> {
     pub bias: M3<T>,
 }
 
+// `Transition` and `ProcessNoise` are plain data with the same derives and alike field lists (one
+// block per matrix of the error state): alike in shape, each its own.
 /// The process noise `Q` accumulated over an interval (symmetric): `Qθθ` (rad²), `Qθb` (rad²/s) and
 /// `Qbb = bias · I` ((rad/s)²).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -52,6 +52,8 @@ impl Hold {
     }
 }
 
+// Each model below is a struct, its `new` and its `InputModel` impl: the impls share the trait's
+// signatures (and `finite_rate`, the one check they all make first); their bodies are each model's own.
 impl<T: Real> InputModel<T> for Hold {
     type Sample = GyroSample<T>;
     type Segment = HeldRate<T>;

@@ -17,6 +17,26 @@ const EXPONENTIAL: Information = Information {
     norm_change_polynomial: [0.0; 7],
 };
 
+/// Each exponential scheme's `information()`: [`EXPONENTIAL`] under its name, as a `const fn` (firmware
+/// reads it in constants), written once for the three. (Their [`Scheme`] impls share the shape of the
+/// trait's signatures; the bodies are each scheme's own.)
+macro_rules! exponential_information {
+    ($($name:ident),*) => {$(
+        impl $name {
+            /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
+            #[must_use]
+            pub const fn information(self) -> Information {
+                Information {
+                    name: stringify!($name),
+                    ..EXPONENTIAL
+                }
+            }
+        }
+    )*};
+}
+
+exponential_information!(ExpMap, Magnus4, Cf4);
+
 /// Half the fourth-order Magnus rotation vector of a step: `φ/2 = ½∫ω dt + (h²/24) ω(½) × ω'(½)` with
 /// `hh = h/2`, i.e. `half_angle(hh) + (hh²/6)·rate_commutator` (Iserles & Nørsett 1999; Blanes, Casas,
 /// Oteo, Ros, *Phys. Rep.* 470 (2009), eq. (4.10)). Exact for a held rate (no commutator).
@@ -57,25 +77,14 @@ fn magnus4_half_angle<T: Real, G: Segment<T>>(segment: &G, hh: T) -> Vec3<T> {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ExpMap;
 
-impl ExpMap {
-    /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
-    #[must_use]
-    pub const fn information(self) -> Information {
-        Information {
-            name: "ExpMap",
-            ..EXPONENTIAL
-        }
-    }
-}
-
 impl<T: Real> Scheme<T> for ExpMap {
     #[inline(always)]
     fn information(&self) -> Information {
         ExpMap::information(*self)
     }
-    /// `q ⊗ (e − 1)` with `e = exp_q(φ)`.
     #[inline(always)]
     fn increment<G: Segment<T>>(&self, q: Quat<T>, segment: &G, h: T) -> Quat<T> {
+        // `q ⊗ (e − 1)` with `e = exp_q(φ)`.
         q * Quat::exp_half_minus_one(magnus4_half_angle(segment, h * T::HALF))
     }
     /// `exp_q(φ) − 1` with `φ/2` kept as `hi + lo`: the rounding of the angle integral's final sum and
@@ -109,17 +118,6 @@ impl<T: Real> Scheme<T> for ExpMap {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Magnus4;
 
-impl Magnus4 {
-    /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
-    #[must_use]
-    pub const fn information(self) -> Information {
-        Information {
-            name: "Magnus4",
-            ..EXPONENTIAL
-        }
-    }
-}
-
 impl<T: Real> Scheme<T> for Magnus4 {
     #[inline(always)]
     fn information(&self) -> Information {
@@ -152,17 +150,6 @@ impl<T: Real> Scheme<T> for Magnus4 {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Cf4;
-
-impl Cf4 {
-    /// What this scheme is: order, stability bounds, norm factor ([`Information`]).
-    #[must_use]
-    pub const fn information(self) -> Information {
-        Information {
-            name: "Cf4",
-            ..EXPONENTIAL
-        }
-    }
-}
 
 impl<T: Real> Scheme<T> for Cf4 {
     #[inline(always)]

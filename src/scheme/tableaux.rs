@@ -17,115 +17,102 @@ use super::Information;
 
 const Z: [f64; MAX_STAGES] = [0.0; MAX_STAGES];
 
-/// Forward Euler (RK1): one stage, order 1. `|R(ix)|² = 1 + x²`: gains norm every step.
-/// Source: Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.1.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Euler;
+/// A Runge–Kutta scheme's type, written once for all five: the unit struct (with the doc comments given)
+/// and its [`ButcherTableau`] from its order, its number of stages and its coefficients `c`, `a` (by
+/// row) and `b`.
+macro_rules! tableau {
+    (
+        $(#[doc = $doc:expr])*
+        $name:ident: order $order:expr, stages $stages:expr,
+        c $c:expr,
+        a $a:expr,
+        b $b:expr $(,)?
+    ) => {
+        $(#[doc = $doc])*
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        pub struct $name;
 
-impl ButcherTableau for Euler {
-    const NAME: &'static str = "Euler";
-    const ORDER: u32 = 1;
-    const STAGES: usize = 1;
-    const C: [f64; MAX_STAGES] = Z;
-    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [Z; MAX_STAGES];
-    const B: [f64; MAX_STAGES] = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        impl ButcherTableau for $name {
+            const NAME: &'static str = stringify!($name);
+            const ORDER: u32 = $order;
+            const STAGES: usize = $stages;
+            const C: [f64; MAX_STAGES] = $c;
+            const A: [[f64; MAX_STAGES]; MAX_STAGES] = $a;
+            const B: [f64; MAX_STAGES] = $b;
+        }
+    };
 }
 
-/// Explicit midpoint rule (RK2): two stages, order 2. `|R(ix)|² = 1 + x⁴/4`: gains norm every step.
-/// Source: Hairer, Nørsett, Wanner, *Solving ODEs I*, eq. (II.1.3) (Runge 1895).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Rk2;
+tableau!(
+    /// Forward Euler (RK1): one stage, order 1. `|R(ix)|² = 1 + x²`: gains norm every step.
+    /// Source: Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.1.
+    Euler: order 1, stages 1,
+    c Z,
+    a [Z; MAX_STAGES],
+    b [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+);
 
-impl ButcherTableau for Rk2 {
-    const NAME: &'static str = "Rk2";
-    const ORDER: u32 = 2;
-    const STAGES: usize = 2;
-    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 2.0, 0.0, 0.0, 0.0, 0.0];
-    #[rustfmt::skip]
-    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
-        Z,
-        [1.0 / 2.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-        Z, Z, Z, Z,
-    ];
-    const B: [f64; MAX_STAGES] = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
-}
+tableau!(
+    /// Explicit midpoint rule (RK2): two stages, order 2. `|R(ix)|² = 1 + x⁴/4`: gains norm every step.
+    /// Source: Hairer, Nørsett, Wanner, *Solving ODEs I*, eq. (II.1.3) (Runge 1895).
+    Rk2: order 2, stages 2,
+    c [0.0, 1.0 / 2.0, 0.0, 0.0, 0.0, 0.0],
+    a [Z, [1.0 / 2.0, 0.0, 0.0, 0.0, 0.0, 0.0], Z, Z, Z, Z],
+    b [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+);
 
-/// Kutta's third-order method (RK3). `|R(ix)|² = 1 − x⁴/12 + x⁶/36`: stable for `h|ω| ≤ 2√3`.
-/// Source: Kutta (1901); Hairer, Nørsett, Wanner, *Solving ODEs I*, Table II.1.1 (left).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Rk3;
-
-impl ButcherTableau for Rk3 {
-    const NAME: &'static str = "Rk3";
-    const ORDER: u32 = 3;
-    const STAGES: usize = 3;
-    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 2.0, 1.0, 0.0, 0.0, 0.0];
-    #[rustfmt::skip]
-    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+tableau!(
+    /// Kutta's third-order method (RK3). `|R(ix)|² = 1 − x⁴/12 + x⁶/36`: stable for `h|ω| ≤ 2√3`.
+    /// Source: Kutta (1901); Hairer, Nørsett, Wanner, *Solving ODEs I*, Table II.1.1 (left).
+    Rk3: order 3, stages 3,
+    c [0.0, 1.0 / 2.0, 1.0, 0.0, 0.0, 0.0],
+    a [
         Z,
         [ 1.0 / 2.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [-1.0,       2.0, 0.0, 0.0, 0.0, 0.0],
         Z, Z, Z,
-    ];
-    const B: [f64; MAX_STAGES] = [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0, 0.0, 0.0, 0.0];
-}
+    ],
+    b [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0, 0.0, 0.0, 0.0],
+);
 
-/// The classic fourth-order Runge–Kutta method, the seed paper's integrator.
-/// `|R(ix)|² = 1 − x⁶/72 + x⁸/576 = 1 − β` (the seed's eq. (3)): stable for `h|ω| ≤ 4√2`.
-/// Source: Kutta (1901); Hairer, Nørsett, Wanner, *Solving ODEs I*, Table II.1.2 (left).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Rk4;
-
-impl ButcherTableau for Rk4 {
-    const NAME: &'static str = "Rk4";
-    const ORDER: u32 = 4;
-    const STAGES: usize = 4;
-    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 2.0, 1.0 / 2.0, 1.0, 0.0, 0.0];
-    #[rustfmt::skip]
-    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+tableau!(
+    /// The classic fourth-order Runge–Kutta method, the seed paper's integrator.
+    /// `|R(ix)|² = 1 − x⁶/72 + x⁸/576 = 1 − β` (the seed's eq. (3)): stable for `h|ω| ≤ 4√2`.
+    /// Source: Kutta (1901); Hairer, Nørsett, Wanner, *Solving ODEs I*, Table II.1.2 (left).
+    Rk4: order 4, stages 4,
+    c [0.0, 1.0 / 2.0, 1.0 / 2.0, 1.0, 0.0, 0.0],
+    a [
         Z,
         [1.0 / 2.0, 0.0,       0.0, 0.0, 0.0, 0.0],
         [0.0,       1.0 / 2.0, 0.0, 0.0, 0.0, 0.0],
         [0.0,       0.0,       1.0, 0.0, 0.0, 0.0],
         Z, Z,
-    ];
-    const B: [f64; MAX_STAGES] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 0.0, 0.0];
-}
+    ],
+    b [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 0.0, 0.0],
+);
 
-/// Fifth-order solution of Dormand–Prince 5(4), six stages.
-///
-/// Its stability polynomial is `R = T₅(z) + z⁶/600`, so `|R(ix)|² = 1 − x⁶/1800 + O(x⁸)`: it loses norm like
-/// RK4 (Cash–Karp and Butcher's RK5, with `z⁶` coefficients 1/800 and 1/1280 below 1/720, gain norm near
-/// zero instead). Stable for step angles `h·max|ω|` up to ≈ 1.99 (its `information().step_angle_limit`;
-/// see docs/schemes.md).
-/// Source: Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19–26, Table 2; Hairer, Nørsett, Wanner,
-/// *Solving ODEs I*, Table II.5.2.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Rk5;
-
-impl ButcherTableau for Rk5 {
-    const NAME: &'static str = "Rk5";
-    const ORDER: u32 = 5;
-    const STAGES: usize = 6;
-    const C: [f64; MAX_STAGES] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0];
-    #[rustfmt::skip]
-    const A: [[f64; MAX_STAGES]; MAX_STAGES] = [
+tableau!(
+    /// Fifth-order solution of Dormand–Prince 5(4), six stages.
+    ///
+    /// Its stability polynomial is `R = T₅(z) + z⁶/600`, so `|R(ix)|² = 1 − x⁶/1800 + O(x⁸)`: it loses norm like
+    /// RK4 (Cash–Karp and Butcher's RK5, with `z⁶` coefficients 1/800 and 1/1280 below 1/720, gain norm near
+    /// zero instead). Stable for step angles `h·max|ω|` up to ≈ 1.99 (its `information().step_angle_limit`;
+    /// see docs/schemes.md).
+    /// Source: Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19–26, Table 2; Hairer, Nørsett, Wanner,
+    /// *Solving ODEs I*, Table II.5.2.
+    Rk5: order 5, stages 6,
+    c [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
+    a [
         Z,
         [1.0 / 5.0,            0.0,                   0.0,                  0.0,               0.0,                 0.0],
         [3.0 / 40.0,           9.0 / 40.0,            0.0,                  0.0,               0.0,                 0.0],
         [44.0 / 45.0,          -56.0 / 15.0,          32.0 / 9.0,           0.0,               0.0,                 0.0],
         [19372.0 / 6561.0,     -25360.0 / 2187.0,     64448.0 / 6561.0,     -212.0 / 729.0,    0.0,                 0.0],
         [9017.0 / 3168.0,      -355.0 / 33.0,         46732.0 / 5247.0,     49.0 / 176.0,      -5103.0 / 18656.0,   0.0],
-    ];
-    #[rustfmt::skip]
-    const B: [f64; MAX_STAGES] =
-        [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0];
-}
+    ],
+    b [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+);
 
 #[cfg(test)]
 mod tests {
