@@ -133,15 +133,10 @@ fn check_all<T: Real>() {
     check_scheme::<T, _>(Baumgarte::new(Rk4, T::from_f64(0.5)).unwrap());
 }
 
-#[test]
-fn bad_inputs_are_refused_with_state_unchanged_f32() {
-    check_all::<f32>();
-}
-
-#[test]
-fn bad_inputs_are_refused_with_state_unchanged_f64() {
-    check_all::<f64>();
-}
+support::tests_in_f32_and_f64!(
+    check_all => bad_inputs_are_refused_with_state_unchanged_f32,
+    bad_inputs_are_refused_with_state_unchanged_f64
+);
 
 #[test]
 fn non_finite_sample_in_every_position_is_refused() {

@@ -177,6 +177,25 @@ pub fn propagate<T: Real, S: Scheme<T>, Z: Stabilizer>(
     }
 }
 
+/// One `#[test]` per precision for a check generic over [`Real`]: `tests_in_f32_and_f64!(check => a, b)`
+/// defines the test `a` running `check::<f32>()` and the test `b` running `check::<f64>()`.
+#[allow(unused_macros)] // As for `dead_code` above: not every test file uses it.
+macro_rules! tests_in_f32_and_f64 {
+    ($check:ident => $f32_test:ident, $f64_test:ident) => {
+        #[test]
+        fn $f32_test() {
+            $check::<f32>();
+        }
+
+        #[test]
+        fn $f64_test() {
+            $check::<f64>();
+        }
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use tests_in_f32_and_f64;
+
 /// Least-squares slope of log(err) against log(h).
 pub fn loglog_slope(hs: &[f64], errs: &[f64]) -> f64 {
     let n = hs.len() as f64;
