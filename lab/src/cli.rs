@@ -217,9 +217,7 @@ mod tests {
     /// with rows.
     #[test]
     fn quick_report_writes_exactly_the_declared_files() {
-        let dir = std::env::temp_dir().join(format!("quatprop-lab-quick-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::table::scratch_dir("quatprop-lab-quick");
         let out = dir.to_str().unwrap();
         let inv = parse_from(["quatprop-lab", "report", "--quick", "--out", out]).unwrap();
         let mut ctx = Ctx::new(dir.clone(), inv.cli.scale());

@@ -186,6 +186,7 @@ impl Config {
         }
     }
 
+    // Each method matches on the configuration's variants and names the fields it uses.
     pub fn label(&self) -> String {
         match *self {
             Config::Quatprop {
@@ -370,10 +371,27 @@ pub trait Integrator<T> {
 }
 
 /// f32 and f64 as the lab needs them: the peers' scalars ([`PeerReal`]: quatprop's `Real` plus nalgebra's and
-/// `ahrs`'s), with each peer's integrator and plain loop in this precision.
+/// `ahrs`'s), with each peer's integrator and plain loop in this precision. Only Fusion (f32 only) and glam
+/// (a quaternion type per precision) differ by precision; each precision says only that, and the dispatch
+/// over the peers is written once.
 pub trait LabReal: PeerReal {
+    /// Fusion's integrator, if Fusion has this precision.
+    fn fusion_peer(q0: Quat<Self>) -> Option<Box<dyn Integrator<Self>>>;
+    /// Fusion's plain loop, if Fusion has this precision.
+    fn fusion_loop(q0: Quat<Self>, samples: &[Sample<Self>]) -> Option<Quat<Self>>;
+    /// glam's integrator on this precision's quaternion type.
+    fn glam_peer(q0: Quat<Self>) -> Box<dyn Integrator<Self>>;
+    /// glam's plain loop on this precision's quaternion type.
+    fn glam_loop(q0: Quat<Self>, samples: &[Sample<Self>]) -> Quat<Self>;
+
     /// The peer's integrator in this precision, if the peer has one.
-    fn peer(p: Peer, q0: Quat<Self>, nominal_dt: Self) -> Option<Box<dyn Integrator<Self>>>;
+    fn peer(p: Peer, q0: Quat<Self>, nominal_dt: Self) -> Option<Box<dyn Integrator<Self>>> {
+        Some(match p {
+            Peer::Fusion => Self::fusion_peer(q0)?,
+            Peer::GlamScaledAxis => Self::glam_peer(q0),
+            _ => nalgebra_peer(p, q0, nominal_dt)?,
+        })
+    }
     /// The peer's plain loop (`crate::peer_loops`) over a whole stream from `q0`: its attitude after the
     /// last sample, if the peer has this precision.
     fn peer_loop(
@@ -381,46 +399,42 @@ pub trait LabReal: PeerReal {
         q0: Quat<Self>,
         nominal_dt: Self,
         samples: &[Sample<Self>],
-    ) -> Option<Quat<Self>>;
+    ) -> Option<Quat<Self>> {
+        Some(match p {
+            Peer::Fusion => Self::fusion_loop(q0, samples)?,
+            Peer::GlamScaledAxis => Self::glam_loop(q0, samples),
+            _ => nalgebra_peer_loop(p, q0, nominal_dt, samples)?,
+        })
+    }
 }
 
 impl LabReal for f32 {
-    fn peer(p: Peer, q0: Quat<f32>, nominal_dt: f32) -> Option<Box<dyn Integrator<f32>>> {
-        Some(match p {
-            Peer::Fusion => Box::new(FusionRun { q: q0, prev: false }),
-            Peer::GlamScaledAxis => Box::new(GlamRun {
-                q: glam::Quat::from(mint::Quaternion::from(q0)),
-                prev: None,
-            }),
-            _ => nalgebra_peer(p, q0, nominal_dt)?,
-        })
+    fn fusion_peer(q0: Quat<f32>) -> Option<Box<dyn Integrator<f32>>> {
+        Some(Box::new(FusionRun { q: q0, prev: false }))
     }
-    fn peer_loop(p: Peer, q0: Quat<f32>, dt: f32, samples: &[Sample<f32>]) -> Option<Quat<f32>> {
-        Some(match p {
-            Peer::Fusion => peer_loops::fusion(q0, samples),
-            Peer::GlamScaledAxis => peer_loops::glam_scaled_axis(q0, samples),
-            _ => nalgebra_peer_loop(p, q0, dt, samples)?,
-        })
+    fn fusion_loop(q0: Quat<f32>, samples: &[Sample<f32>]) -> Option<Quat<f32>> {
+        Some(peer_loops::fusion(q0, samples))
+    }
+    fn glam_peer(q0: Quat<f32>) -> Box<dyn Integrator<f32>> {
+        Box::new(GlamRun::new(q0))
+    }
+    fn glam_loop(q0: Quat<f32>, samples: &[Sample<f32>]) -> Quat<f32> {
+        peer_loops::glam_scaled_axis(q0, samples)
     }
 }
 
 impl LabReal for f64 {
-    fn peer(p: Peer, q0: Quat<f64>, nominal_dt: f64) -> Option<Box<dyn Integrator<f64>>> {
-        Some(match p {
-            Peer::Fusion => return None,
-            Peer::GlamScaledAxis => Box::new(DGlamRun {
-                q: glam::DQuat::from(mint::Quaternion::from(q0)),
-                prev: None,
-            }),
-            _ => nalgebra_peer(p, q0, nominal_dt)?,
-        })
+    fn fusion_peer(_: Quat<f64>) -> Option<Box<dyn Integrator<f64>>> {
+        None
     }
-    fn peer_loop(p: Peer, q0: Quat<f64>, dt: f64, samples: &[Sample<f64>]) -> Option<Quat<f64>> {
-        Some(match p {
-            Peer::Fusion => return None,
-            Peer::GlamScaledAxis => peer_loops::dglam_scaled_axis(q0, samples),
-            _ => nalgebra_peer_loop(p, q0, dt, samples)?,
-        })
+    fn fusion_loop(_: Quat<f64>, _: &[Sample<f64>]) -> Option<Quat<f64>> {
+        None
+    }
+    fn glam_peer(q0: Quat<f64>) -> Box<dyn Integrator<f64>> {
+        Box::new(DGlamRun::new(q0))
+    }
+    fn glam_loop(q0: Quat<f64>, samples: &[Sample<f64>]) -> Quat<f64> {
+        peer_loops::dglam_scaled_axis(q0, samples)
     }
 }
 
@@ -650,6 +664,15 @@ macro_rules! glam_run {
             q: $quat,
             prev: Option<Vec3<$real>>,
         }
+        impl $name {
+            /// From `q0`, before the stream's first sample.
+            fn new(q0: Quat<$real>) -> Self {
+                Self {
+                    q: <$quat>::from(mint::Quaternion::from(q0)),
+                    prev: None,
+                }
+            }
+        }
         impl Integrator<$real> for $name {
             fn feed(&mut self, samples: &[Sample<$real>]) {
                 let (mut q, mut prev) = (self.q, self.prev);
@@ -723,23 +746,10 @@ struct NalgebraRk4Run<T: LabReal> {
 }
 impl<T: LabReal> Integrator<T> for NalgebraRk4Run<T> {
     fn feed(&mut self, samples: &[Sample<T>]) {
-        let half = T::HALF;
-        let f = |y: &nalgebra::Quaternion<T>, w: Vec3<T>| {
-            y * nalgebra::Quaternion::from_imag(na_vec(w * half))
-        };
         let (mut q_run, mut prev) = (self.q, self.prev);
         for s in samples {
             if let Some(w0) = prev {
-                let (w1, h) = (s.w, s.dt);
-                let wm = (w0 + w1) * half;
-                let q = q_run.into_inner();
-                let k1 = f(&q, w0);
-                let k2 = f(&(q + k1 * (h * half)), wm);
-                let k3 = f(&(q + k2 * (h * half)), wm);
-                let k4 = f(&(q + k3 * h), w1);
-                let two = T::TWO;
-                let six = <T as Real>::from_f64(6.0);
-                q_run = NaQuat::new_normalize(q + (k1 + k2 * two + k3 * two + k4) * (h / six));
+                q_run = peer_loops::nalgebra_rk4_step(q_run, w0, s.w, s.dt);
             }
             prev = Some(s.w);
         }

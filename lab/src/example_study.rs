@@ -49,9 +49,6 @@ impl Study for InputModels {
     const ABOUT: &'static str =
         "Example: the final error of each input model on coning, ExpMap in f32";
     const CSV: &'static [CsvFile] = &[CsvFile::table::<Row>()];
-    fn figures(&self) -> Vec<String> {
-        Vec::new()
-    }
     fn run(&self, ctx: &mut Ctx, args: &Args) {
         // Seconds of coning: what each scale can afford.
         let horizon = ctx.scale.pick(1.37, 10.37, 100.37);

@@ -14,9 +14,9 @@
 //! (`configs.rs`, `peer_loops.rs`, `peers.rs`, `peer_types.rs`); scenes and their exact references
 //! (`scenes.rs`: the synthetic ones and the catalogue; `rigid_body.rs`, `recorded.rs`; `scene.rs`: what a
 //! scene is; `sample.rs`: a stream's sample); and the leaves: the scale (`scale.rs`), double-double time
-//! (`dd.rs`), unchecked steps (`unchecked.rs`), random numbers (`rng.rs`), host timing (`quiet.rs`,
-//! `timing.rs`), the firmware bench's counts (`m4f_bench.rs`), CSV and tables (`table.rs`) and plots
-//! (`plot.rs`).
+//! (`dd.rs`), checkpoints and log-log slopes (`series.rs`), unchecked steps (`unchecked.rs`), random
+//! numbers (`rng.rs`), host timing (`quiet.rs`, `timing.rs`), the firmware bench's counts
+//! (`m4f_bench.rs`), CSV and tables (`table.rs`) and plots (`plot.rs`).
 
 mod args;
 mod cli;
@@ -39,6 +39,7 @@ mod sample;
 mod scale;
 mod scene;
 mod scenes;
+mod series;
 mod studies;
 mod study;
 mod summary;

@@ -126,8 +126,7 @@ mod tests {
     /// A changed cell is caught (the report's own table, which every report has).
     #[test]
     fn a_table_that_differs_from_its_csv_fails() {
-        let dir = std::env::temp_dir().join(format!("quatprop-lab-tamper-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::table::scratch_dir("quatprop-lab-tamper");
         let rows = vec![StudyTimeRow {
             study: "x".into(),
             wall_s: 1.5,

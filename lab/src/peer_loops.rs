@@ -5,7 +5,7 @@
 //!
 //! A stream's first sample only starts it (its interval is not integrated), as in the wrappers.
 
-use crate::peer_types::{ahrs_vec, from_ahrs, from_na, na_vec, to_ahrs, to_na, PeerReal};
+use crate::peer_types::{ahrs_vec, from_ahrs, from_na, na_vec, to_ahrs, to_na, NaQuat, PeerReal};
 use crate::peers;
 use crate::sample::Sample;
 use quatprop::{Quat, Vec3};
@@ -31,25 +31,29 @@ pub fn ahrs_madgwick<T: PeerReal>(q0: Quat<T>, sample_period: T, samples: &[Samp
 
 /// nalgebra: classic RK4 on `q' = ½ q ⊗ (0, ω)` with linear rates, then `UnitQuaternion::new_normalize`.
 pub fn nalgebra_rk4<T: PeerReal>(q0: Quat<T>, samples: &[Sample<T>]) -> Quat<T> {
+    let mut q = to_na(q0);
+    for pair in samples.windows(2) {
+        q = nalgebra_rk4_step(q, pair[0].w, pair[1].w, pair[1].dt);
+    }
+    from_na(&q)
+}
+
+/// One step of [`nalgebra_rk4`] over an interval `h` whose rate goes linearly from `w0` to `w1` (its
+/// wrapper in `configs.rs` takes the same step, so the two agree bit for bit).
+#[inline]
+pub fn nalgebra_rk4_step<T: PeerReal>(q: NaQuat<T>, w0: Vec3<T>, w1: Vec3<T>, h: T) -> NaQuat<T> {
     let half = T::HALF;
     let (two, six) = (T::TWO, <T as quatprop::Real>::from_f64(6.0));
     let f = |y: &nalgebra::Quaternion<T>, w: Vec3<T>| {
         y * nalgebra::Quaternion::from_imag(na_vec(w * half))
     };
-    let mut q = to_na(q0);
-    for pair in samples.windows(2) {
-        let (w0, w1, h) = (pair[0].w, pair[1].w, pair[1].dt);
-        let wm = (w0 + w1) * half;
-        let y = q.into_inner();
-        let k1 = f(&y, w0);
-        let k2 = f(&(y + k1 * (h * half)), wm);
-        let k3 = f(&(y + k2 * (h * half)), wm);
-        let k4 = f(&(y + k3 * h), w1);
-        q = nalgebra::UnitQuaternion::new_normalize(
-            y + (k1 + k2 * two + k3 * two + k4) * (h / six),
-        );
-    }
-    from_na(&q)
+    let wm = (w0 + w1) * half;
+    let y = q.into_inner();
+    let k1 = f(&y, w0);
+    let k2 = f(&(y + k1 * (h * half)), wm);
+    let k3 = f(&(y + k2 * (h * half)), wm);
+    let k4 = f(&(y + k3 * h), w1);
+    NaQuat::new_normalize(y + (k1 + k2 * two + k3 * two + k4) * (h / six))
 }
 
 /// nalgebra: `q *= UnitQuaternion::from_scaled_axis(ω̄ dt)` on the trapezoid mean rate.
@@ -62,27 +66,30 @@ pub fn nalgebra_scaled_axis<T: PeerReal>(q0: Quat<T>, samples: &[Sample<T>]) -> 
     from_na(&q)
 }
 
-/// glam (f32): `q = (q * Quat::from_scaled_axis(ω̄ dt)).normalize()` on the trapezoid mean rate.
-pub fn glam_scaled_axis(q0: Quat<f32>, samples: &[Sample<f32>]) -> Quat<f32> {
-    let mut q = glam::Quat::from(mint::Quaternion::from(q0));
-    for pair in samples.windows(2) {
-        let v = (pair[0].w + pair[1].w) * (0.5 * pair[1].dt);
-        let v = glam::Vec3::from(mint::Vector3::from(v));
-        q = (q * glam::Quat::from_scaled_axis(v)).normalize();
-    }
-    Quat::from_mint(q)
+/// glam's loop in one precision: `q = (q * Quat::from_scaled_axis(ω̄ dt)).normalize()` on the trapezoid
+/// mean rate. A macro: glam's f32 and f64 quaternions are distinct types with no trait in common.
+macro_rules! glam_scaled_axis_loop {
+    ($(#[$doc:meta])* $name:ident, $real:ty, $quat:ty, $vec:ty) => {
+        $(#[$doc])*
+        pub fn $name(q0: Quat<$real>, samples: &[Sample<$real>]) -> Quat<$real> {
+            let mut q = <$quat>::from(mint::Quaternion::from(q0));
+            for pair in samples.windows(2) {
+                let v = (pair[0].w + pair[1].w) * (0.5 * pair[1].dt);
+                let v = <$vec>::from(mint::Vector3::from(v));
+                q = (q * <$quat>::from_scaled_axis(v)).normalize();
+            }
+            Quat::from_mint(q)
+        }
+    };
 }
-
-/// glam (f64): the same with `DQuat`.
-pub fn dglam_scaled_axis(q0: Quat<f64>, samples: &[Sample<f64>]) -> Quat<f64> {
-    let mut q = glam::DQuat::from(mint::Quaternion::from(q0));
-    for pair in samples.windows(2) {
-        let v = (pair[0].w + pair[1].w) * (0.5 * pair[1].dt);
-        let v = glam::DVec3::from(mint::Vector3::from(v));
-        q = (q * glam::DQuat::from_scaled_axis(v)).normalize();
-    }
-    Quat::from_mint(q)
-}
+glam_scaled_axis_loop!(
+    /// glam (f32): `q = (q * Quat::from_scaled_axis(ω̄ dt)).normalize()` on the trapezoid mean rate.
+    glam_scaled_axis, f32, glam::Quat, glam::Vec3
+);
+glam_scaled_axis_loop!(
+    /// glam (f64): the same with `DQuat`.
+    dglam_scaled_axis, f64, glam::DQuat, glam::DVec3
+);
 
 #[cfg(test)]
 mod tests {

@@ -174,28 +174,23 @@ pub fn plot(
         }
     };
     for v in ticks(x0, x1, x.log) {
-        let _ = write!(
-            s,
-            r##"<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#ddd"/><text x="{0}" y="{3}" text-anchor="middle">{4}</text>
-"##,
-            px(v),
-            t,
-            h - b,
-            h - b + 18.0,
-            tick_label(v, x.log)
+        let label = tick_label(v, x.log);
+        grid_tick(
+            &mut s,
+            [px(v), t, px(v), h - b],
+            (px(v), h - b + 18.0),
+            "middle",
+            &label,
         );
     }
     for v in ticks(y0, y1, y.log) {
-        let _ = write!(
-            s,
-            r##"<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#ddd"/><text x="{3}" y="{4}" text-anchor="end">{5}</text>
-"##,
-            l,
-            py(v),
-            w - r,
-            l - 6.0,
-            py(v) + 4.0,
-            tick_label(v, y.log)
+        let label = tick_label(v, y.log);
+        grid_tick(
+            &mut s,
+            [l, py(v), w - r, py(v)],
+            (l - 6.0, py(v) + 4.0),
+            "end",
+            &label,
         );
     }
     let _ = write!(
@@ -237,17 +232,8 @@ pub fn plot(
             );
         }
         if se.marker {
-            for (a, b) in &p {
-                if second_round {
-                    let _ = writeln!(
-                        s,
-                        r#"<rect x="{:.1}" y="{:.1}" width="6.4" height="6.4" fill="{c}"/>"#,
-                        a - 3.2,
-                        b - 3.2
-                    );
-                } else {
-                    let _ = writeln!(s, r#"<circle cx="{a:.1}" cy="{b:.1}" r="3.2" fill="{c}"/>"#);
-                }
+            for &(a, b) in &p {
+                marker(&mut s, a, b, c, second_round);
             }
         }
         // The legend entry draws the series as it is drawn: its dash and its marker.
@@ -265,20 +251,7 @@ pub fn plot(
             );
         }
         if se.marker || !se.line {
-            let xm = 0.5 * (x0 + x1);
-            if second_round {
-                let _ = writeln!(
-                    s,
-                    r#"<rect x="{:.1}" y="{:.1}" width="6.4" height="6.4" fill="{c}"/>"#,
-                    xm - 3.2,
-                    ly - 3.2
-                );
-            } else {
-                let _ = writeln!(
-                    s,
-                    r#"<circle cx="{xm:.1}" cy="{ly:.1}" r="3.2" fill="{c}"/>"#
-                );
-            }
+            marker(&mut s, 0.5 * (x0 + x1), ly, c, second_round);
         }
         let _ = writeln!(
             s,
@@ -291,6 +264,33 @@ pub fn plot(
     s.push_str("</svg>\n");
     std::fs::write(dir.join(format!("{name}.svg")), &s)?;
     png(&s, &dir.join(format!("{name}.png")))
+}
+
+/// A point's marker at `(x, y)`: a square for a series on the second round of colours, else a dot.
+fn marker(s: &mut String, x: f64, y: f64, colour: &str, square: bool) {
+    if square {
+        let _ = writeln!(
+            s,
+            r#"<rect x="{:.1}" y="{:.1}" width="6.4" height="6.4" fill="{colour}"/>"#,
+            x - 3.2,
+            y - 3.2
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            r#"<circle cx="{x:.1}" cy="{y:.1}" r="3.2" fill="{colour}"/>"#
+        );
+    }
+}
+
+/// One tick of an axis: its grid line `[x1, y1, x2, y2]` and its label at `(x, y)`, anchored `anchor`.
+fn grid_tick(s: &mut String, line: [f64; 4], at: (f64, f64), anchor: &str, label: &str) {
+    let [x1, y1, x2, y2] = line;
+    let (x, y) = at;
+    let _ = writeln!(
+        s,
+        r##"<line x1="{x1}" y1="{y1}" x2="{x2}" y2="{y2}" stroke="#ddd"/><text x="{x}" y="{y}" text-anchor="{anchor}">{label}</text>"##
+    );
 }
 
 fn xml(t: &str) -> String {
@@ -312,7 +312,8 @@ fn fonts() -> std::sync::Arc<resvg::usvg::fontdb::Database> {
         .clone()
 }
 
-fn png(svg: &str, path: &Path) -> std::io::Result<()> {
+/// Renders an SVG document to a PNG file at `path`, its text in the system's fonts.
+pub fn png(svg: &str, path: &Path) -> std::io::Result<()> {
     use resvg::{tiny_skia, usvg};
     let opt = usvg::Options {
         fontdb: fonts(),

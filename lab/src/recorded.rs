@@ -235,6 +235,7 @@ fn natural_spline(w: &[Vec3<f64>]) -> Vec<Vec3<f64>> {
     m
 }
 
+// The `Scene` trait's methods, spelled out as in every scene.
 impl Scene for RecordedMotion {
     fn key(&self) -> &'static str {
         self.key

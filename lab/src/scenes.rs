@@ -13,6 +13,7 @@ fn exp_q(v: Vec3<f64>) -> Quat<f64> {
 
 /// Coning α = 0.3 rad at 1 Hz.
 pub struct Coning;
+// Each scene names itself through the `Scene` trait's methods, spelled out in each impl.
 impl Scene for Coning {
     fn key(&self) -> &'static str {
         "coning"

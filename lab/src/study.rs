@@ -86,8 +86,10 @@ pub trait Study: Sync + 'static {
     const ABOUT: &'static str;
     /// Every CSV file it writes, with its row type.
     const CSV: &'static [CsvFile];
-    /// The figures it writes in a report (file stems; each as `.svg` and `.png`).
-    fn figures(&self) -> Vec<String>;
+    /// The figures it writes in a report (file stems; each as `.svg` and `.png`; default: none).
+    fn figures(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// The arguments it runs with in `report` (default: its sub-command's defaults, as with no argument).
     fn report_args(&self, _report: &ReportArgs) -> Self::Args {
         defaults()

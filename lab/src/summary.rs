@@ -242,8 +242,7 @@ mod tests {
     /// one every horizon but the hour; nothing passes the hour.
     #[test]
     fn the_cheapest_passing_configuration_is_named() {
-        let dir = std::env::temp_dir().join(format!("quatprop-summary-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::table::scratch_dir("quatprop-summary");
         // Horizon 10 s at 100 Hz (1000 samples). The consumer gyro's budget at 10 s: 0.1 · 0.005° · √10 =
         // 2.76e-5 rad; at 60 s 6.76e-5 rad (scaled error must be ≤): the cheap one errs 2e-5 in 10 s
         // (1.2e-4 at 60 s: fails), the dear one 1e-6 (6e-6 at 60 s: passes; 3.6e-4 at 1 h vs budget

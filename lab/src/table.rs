@@ -91,6 +91,29 @@ pub fn header(cols: &[&str]) -> String {
     format!("| {} |\n|{}\n", cols.join(" | "), "---|".repeat(cols.len()))
 }
 
+/// The distinct values of `key` over `rows`, in the order they first appear: a pivot table's lines or
+/// columns, in the order of its file.
+pub fn distinct<'a, R, K: PartialEq>(rows: &'a [R], key: impl Fn(&'a R) -> K) -> Vec<K> {
+    let mut v = Vec::new();
+    for r in rows {
+        let k = key(r);
+        if !v.contains(&k) {
+            v.push(k);
+        }
+    }
+    v
+}
+
+/// A fresh, empty directory for a test's files: `name` and this process's id under the system's
+/// temporary directory.
+#[cfg(test)]
+pub fn scratch_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// A number in the report's short scientific form (`4.75e-3`), `–` for NaN, `∞` for infinities.
 pub fn sci(v: f64, digits: usize) -> String {
     if v.is_nan() {

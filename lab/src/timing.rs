@@ -20,6 +20,7 @@ impl Csv for StudyTimeRow {
     const FILE: &'static str = "run_time.csv";
 }
 
+// Each table spells out its own line: its columns and their number formats are its own.
 impl Table for StudyTimeRow {
     fn render(rows: &[Self]) -> String {
         let mut t = table::header(&[

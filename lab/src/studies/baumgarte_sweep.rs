@@ -66,6 +66,7 @@ pub struct SweepRow {
     /// Whether the propagator accepts below and refuses above (empty: the step angle itself is refused).
     pub library_agrees: Option<bool>,
 }
+// A row type names its file and renders its table through the `Csv` and `Table` impls (alike in each).
 impl Csv for SweepRow {
     const FILE: &'static str = "baumgarte_sweep_bounds.csv";
 }

@@ -45,6 +45,7 @@ impl Csv for Row {
     const FILE: &'static str = "config_cost.csv";
 }
 
+// Each table spells out its own line: its columns and their number formats are its own.
 impl Table for Row {
     fn render(rows: &[Self]) -> String {
         let mut t = table::header(&[
@@ -78,6 +79,7 @@ struct CompactBurst<'a> {
     period: &'a mut FixedPeriod<f32>,
 }
 
+// The method signatures are the `Visit` trait's, which every visitor spells out.
 impl Visit<f32> for CompactBurst<'_> {
     type Output = ();
     fn rates<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>)
@@ -136,47 +138,44 @@ where
     A: Accumulator<f32> + 'static,
 {
     let configured: Configured<f32> = config.build(Quat::IDENTITY).expect("a valid configuration");
-    let static_run = Box::new(move |s: &[GyroSample<f32>]| {
-        let mut p = fixed;
-        let mut period = period();
-        for b in s.chunks(BURST) {
-            let _ = black_box(p.push_burst(b, &mut period));
-        }
-        p.attitude()
-    }) as Variant;
-    let configured_run = Box::new(move |s: &[GyroSample<f32>]| {
-        let mut p = configured;
-        let mut period = period();
-        for b in s.chunks(BURST) {
-            let _ = black_box(p.push_burst(b, &mut period));
-        }
-        p.attitude()
-    }) as Variant;
-    let compact_run = Box::new(move |s: &[GyroSample<f32>]| {
-        let mut p = configured;
-        let mut period = period();
-        for burst in s.chunks(BURST) {
-            p.visit_compact(CompactBurst {
-                burst,
-                period: &mut period,
-            });
-        }
-        p.attitude()
-    }) as Variant;
+    let static_run = in_bursts(fixed, Propagator::attitude, |p, burst, period| {
+        let _ = black_box(p.push_burst(burst, period));
+    });
+    let configured_run = in_bursts(configured, Configured::attitude, |p, burst, period| {
+        let _ = black_box(p.push_burst(burst, period));
+    });
+    let compact_run = in_bursts(configured, Configured::attitude, |p, burst, period| {
+        p.visit_compact(CompactBurst { burst, period });
+    });
     (name.to_string(), vec![static_run, configured_run, compact_run])
 }
 
 type Variant = Box<dyn Fn(&[GyroSample<f32>]) -> Quat<f32>>;
 
+/// A variant that runs the stream through a fresh copy of `p` in bursts of [`BURST`], `push` taking one
+/// burst, and returns the copy's final attitude.
+fn in_bursts<P: Copy + 'static>(
+    p: P,
+    attitude: fn(&P) -> Quat<f32>,
+    push: impl Fn(&mut P, &[GyroSample<f32>], &mut FixedPeriod<f32>) + 'static,
+) -> Variant {
+    Box::new(move |s: &[GyroSample<f32>]| {
+        let mut p = p;
+        let mut period = period();
+        for burst in s.chunks(BURST) {
+            push(&mut p, burst, &mut period);
+        }
+        attitude(&p)
+    })
+}
+
+// The `Study` impl each study spells out (its name, files and run: lab/README.md, adding a study).
 impl Study for ConfigCost {
     type Args = NoArgs;
     const NAME: &'static str = "config-cost";
     const ABOUT: &'static str =
         "Host cost of choosing at run time: bursts of 32 through Configured against the static propagator";
     const CSV: &'static [CsvFile] = &[CsvFile::table::<Row>()];
-    fn figures(&self) -> Vec<String> {
-        Vec::new()
-    }
     fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
         let (n, rounds) = ctx.scale.pick((20_000, 3), (200_000, 15), (1_000_000, 40));
         ctx.section("config cost", |ctx| {

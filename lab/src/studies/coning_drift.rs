@@ -16,14 +16,12 @@ use serde::{Deserialize, Serialize};
 /// The coning drift coefficients (sub-command `coning-drift`).
 pub struct ConingDrift;
 
+// The `Study` impl each study spells out (its name, files and run: lab/README.md, adding a study).
 impl Study for ConingDrift {
     type Args = NoArgs;
     const NAME: &'static str = "coning-drift";
     const ABOUT: &'static str = "Coning drift coefficient of every rate scheme and input model";
     const CSV: &'static [CsvFile] = &[CsvFile::data::<DriftRow>(), CsvFile::table::<FitRow>()];
-    fn figures(&self) -> Vec<String> {
-        Vec::new()
-    }
     fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
         // Cone periods between the drift's checkpoints: 20 cost a fraction of a second.
         let periods = ctx.scale.pick(3, 20, 20);

@@ -21,7 +21,7 @@
 // Matrix algorithms read clearest with the indices of their formulas.
 #![allow(clippy::needless_range_loop)]
 
-use crate::plot::{plot, Axis, Series};
+use crate::plot::{plot, png, Axis, Series};
 use crate::report::Ctx;
 use crate::study::{CsvFile, Study};
 use crate::table::{self, sci, Csv, Table};
@@ -89,6 +89,8 @@ impl Study for Covariance {
 
 // ---------------------------------------------------------------------------------------------------------
 // The scenario.
+
+// The scenario's parameters: one named constant a line, alike in form only (values, not repeated logic).
 
 /// Attitude steps per covariance step (and per inclination epoch): 10 ms at 1 kHz.
 const PER_EPOCH: u64 = 10;
@@ -460,7 +462,7 @@ const FORMS: [&str; 6] = [
     "f32 U-D, f64 inputs rounded",
     "f32 U-D compensated, f64 inputs rounded",
 ];
-/// Indices into [`FORMS`].
+/// Indices into [`FORMS`] (one named constant a line, like the scenario's parameters).
 const NAIVE: usize = 0;
 const JOSEPH: usize = 1;
 const UD: usize = 2;
@@ -510,6 +512,7 @@ pub struct SummaryRow {
 impl Csv for SummaryRow {
     const FILE: &'static str = "covariance_summary.csv";
 }
+// Each table spells out its own line: its columns and their number formats are its own.
 impl Table for SummaryRow {
     fn render(rows: &[Self]) -> String {
         let n = rows.first().map_or(0, |r| r.steps_end) as f64;
@@ -892,23 +895,6 @@ fn figure(dir: &Path, panels: &[(&str, Axis, Vec<Series>)], x: Axis) -> std::io:
     out += "</svg>\n";
     std::fs::write(dir.join("covariance.svg"), &out)?;
     png(&out, &dir.join("covariance.png"))
-}
-
-fn png(svg: &str, path: &Path) -> std::io::Result<()> {
-    use resvg::{tiny_skia, usvg};
-    let mut db = usvg::fontdb::Database::new();
-    db.load_system_fonts();
-    let opt = usvg::Options {
-        fontdb: std::sync::Arc::new(db),
-        ..usvg::Options::default()
-    };
-    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| std::io::Error::other(e.to_string()))?;
-    let size = tree.size().to_int_size();
-    let mut pix = tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| std::io::Error::other("empty plot"))?;
-    resvg::render(&tree, tiny_skia::Transform::default(), &mut pix.as_mut());
-    pix.save_png(path)
-        .map_err(|e| std::io::Error::other(e.to_string()))
 }
 
 // ---------------------------------------------------------------------------------------------------------

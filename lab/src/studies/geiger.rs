@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 /// The seed paper's two figures (sub-command `geiger`).
 pub struct Geiger;
 
+// The `Study` impl each study spells out (its name, files and run: lab/README.md, adding a study).
 impl Study for Geiger {
     type Args = NoArgs;
     const NAME: &'static str = "geiger";
@@ -33,6 +34,8 @@ impl Study for Geiger {
         ctx.section("geiger fig 2", |c| figure2(c, points));
     }
 }
+
+// Every CSV row type derives serde the same way: strict columns, read back as written.
 
 /// Fig. 1: N after each step.
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]

@@ -20,6 +20,7 @@
 
 use crate::configs::scheme_name;
 use crate::dd;
+use crate::series;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, cell, sci, Csv, Table};
 use crate::args::{Horizon, ReportArgs};
@@ -38,6 +39,7 @@ use serde::{Deserialize, Serialize};
 /// The long horizon in f32 (sub-command `long-horizon`).
 pub struct LongHorizon;
 
+// The `Study` impl each study spells out (its name, files and run: lab/README.md, adding a study).
 impl Study for LongHorizon {
     type Args = Horizon;
     const NAME: &'static str = "long-horizon";
@@ -248,6 +250,7 @@ pub struct SummaryRow {
     pub f64_physical_error_at_end: f64,
     pub max_abs_n: f64,
 }
+// A row type names its file and renders its table through the `Csv` and `Table` impls (alike in each).
 impl Csv for SummaryRow {
     const FILE: &'static str = "long_horizon_summary.csv";
 }
@@ -300,14 +303,7 @@ impl Table for SummaryRow {
 
 /// Checkpoints every half decade from 10³ to `total`.
 fn checkpoints(total: u64) -> Vec<u64> {
-    let mut v = Vec::new();
-    let mut c = 1000f64;
-    while (c.round() as u64) < total {
-        v.push(c.round() as u64);
-        c *= 10f64.sqrt();
-    }
-    v.push(total);
-    v
+    series::half_decades(1e3, total)
 }
 
 fn angle(a: Quat<f64>, b: Quat<f64>) -> f64 {
@@ -552,20 +548,10 @@ fn slope(points: &[(u64, f64)]) -> f64 {
     let last = points.last().map_or(1, |p| p.0) as f64;
     let sel: Vec<(f64, f64)> = points
         .iter()
-        .filter(|p| (p.0 as f64) >= last / 100.0 * 0.999 && p.1 > 0.0 && p.1.is_finite())
-        .map(|p| ((p.0 as f64).ln(), p.1.ln()))
+        .filter(|p| (p.0 as f64) >= last / 100.0 * 0.999)
+        .map(|p| (p.0 as f64, p.1))
         .collect();
-    let n = sel.len() as f64;
-    if n < 2.0 {
-        return f64::NAN;
-    }
-    let (mx, my) = (
-        sel.iter().map(|p| p.0).sum::<f64>() / n,
-        sel.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = sel.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = sel.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-    sxy / sxx
+    series::log_slope(&sel)
 }
 
 fn summary(r: &Run, pts: &[PointRow]) -> SummaryRow {

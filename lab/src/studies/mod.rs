@@ -115,9 +115,7 @@ mod tests {
     /// (its defaults), writing the files it declares, which read back strictly.
     #[test]
     fn the_example_study_runs_like_a_registered_one() {
-        let dir = std::env::temp_dir().join(format!("quatprop-lab-example-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::table::scratch_dir("quatprop-lab-example");
         let study: &dyn AnyStudy = &InputModels;
         let matches = study
             .command()

@@ -19,6 +19,7 @@
 use crate::plot::{plot, Axis, Series};
 use crate::report::Ctx;
 use crate::rng::Gaussian;
+use crate::series::log_slope;
 use crate::study::{CsvFile, Study};
 use crate::table::{self, Csv, Table};
 use quatprop::noise::{AllanVariance, Cluster, NoiseFit, Term, FLICKER_FLOOR};
@@ -117,6 +118,7 @@ impl Study for Noise {
 
 const DEG: f64 = core::f64::consts::PI / 180.0;
 /// Standard gravity (m/s²): a datasheet's g.
+// The study's parameters: one named constant a line, alike in form only (values, not repeated logic).
 const G0: f64 = 9.806_65;
 /// The fit's shortest cluster, in sample periods.
 const MIN_TAU_PERIODS: f64 = 16.0;
@@ -552,6 +554,7 @@ impl Csv for SensorRow {
     const FILE: &'static str = "noise_sensors.csv";
 }
 
+// Each table spells out its own line: its columns and their number formats are its own.
 impl Table for SensorRow {
     fn render(rows: &[Self]) -> String {
         let mut t = table::header(&[
@@ -604,12 +607,7 @@ impl Csv for BandRow {
 
 impl Table for BandRow {
     fn render(rows: &[Self]) -> String {
-        let mut sensors: Vec<&str> = Vec::new();
-        for r in rows {
-            if !sensors.contains(&r.sensor.as_str()) {
-                sensors.push(&r.sensor);
-            }
-        }
+        let sensors = table::distinct(rows, |r| r.sensor.as_str());
         let mut taus: Vec<u64> = rows.iter().map(|r| r.tau_periods).collect();
         taus.sort_unstable();
         taus.dedup();
@@ -776,12 +774,7 @@ impl Table for ErrorRow {
     /// One table per sensor.
     fn render(rows: &[Self]) -> String {
         let mut t = String::new();
-        let mut sensors: Vec<&str> = Vec::new();
-        for r in rows {
-            if !sensors.contains(&r.sensor.as_str()) {
-                sensors.push(&r.sensor);
-            }
-        }
+        let sensors = table::distinct(rows, |r| r.sensor.as_str());
         for (i, s) in sensors.iter().enumerate() {
             if i > 0 {
                 t += "\n";
@@ -946,6 +939,7 @@ impl Csv for MinTauRow {
     const FILE: &'static str = "noise_min_tau.csv";
 }
 
+// Each table spells out its own line: its columns and their number formats are its own.
 impl Table for MinTauRow {
     fn render(rows: &[Self]) -> String {
         let mut t = table::header(&[
@@ -1023,26 +1017,6 @@ fn median(v: &mut [f64]) -> f64 {
     } else {
         0.5 * (v[n / 2 - 1] + v[n / 2])
     }
-}
-
-/// Least-squares slope of log(y) against log(x), over the finite positive points.
-fn log_slope(points: &[(f64, f64)]) -> f64 {
-    let p: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && y.is_finite())
-        .map(|(x, y)| (x.ln(), y.ln()))
-        .collect();
-    if p.len() < 2 {
-        return f64::NAN;
-    }
-    let n = p.len() as f64;
-    let (mx, my) = (
-        p.iter().map(|q| q.0).sum::<f64>() / n,
-        p.iter().map(|q| q.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = p.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
-    let sxx: f64 = p.iter().map(|q| (q.0 - mx) * (q.0 - mx)).sum();
-    sxy / sxx
 }
 
 /// Writes a table's CSV and returns it (in the report), or renders it directly (on a page of its own).

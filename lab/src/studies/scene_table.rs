@@ -6,7 +6,7 @@ use crate::report::Ctx;
 use crate::scene::{attitude_error, stream, Scene};
 use crate::scenes;
 use crate::study::{CsvFile, NoArgs, Study};
-use crate::table::{cell, Csv, Table};
+use crate::table::{self, cell, Csv, Table};
 use quatprop::Quat;
 use serde::{Deserialize, Serialize};
 
@@ -18,9 +18,6 @@ impl Study for Scenes {
     const NAME: &'static str = "scenes";
     const ABOUT: &'static str = "Every scene × the comparison set at 1 kHz, f32";
     const CSV: &'static [CsvFile] = &[CsvFile::table::<SceneRow>()];
-    fn figures(&self) -> Vec<String> {
-        Vec::new()
-    }
     fn run(&self, ctx: &mut Ctx, _: &NoArgs) {
         // Seconds of each scene: the full 20.37 s cost a fraction of a second.
         let horizon = ctx.scale.pick(2.37, 20.37, 20.37);
@@ -44,27 +41,16 @@ pub struct SceneRow {
     /// Its kind, in words (empty: none).
     pub error_kind: String,
 }
+// A row type names its file and renders its table through the `Csv` and `Table` impls (alike in each).
 impl Csv for SceneRow {
     const FILE: &'static str = "scenes_f32_1khz.csv";
 }
 impl Table for SceneRow {
     /// Configurations down, scenes across, in the order of the file.
     fn render(rows: &[Self]) -> String {
-        let mut scenes: Vec<&str> = Vec::new();
-        let mut configs: Vec<&str> = Vec::new();
-        for r in rows {
-            if !scenes.contains(&r.scene_name.as_str()) {
-                scenes.push(&r.scene_name);
-            }
-            if !configs.contains(&r.configuration.as_str()) {
-                configs.push(&r.configuration);
-            }
-        }
-        let mut t = format!(
-            "| configuration | {} |\n|---|{}\n",
-            scenes.join(" | "),
-            "---|".repeat(scenes.len())
-        );
+        let scenes = table::distinct(rows, |r| r.scene_name.as_str());
+        let configs = table::distinct(rows, |r| r.configuration.as_str());
+        let mut t = table::header(&[&["configuration"], &scenes[..]].concat());
         for c in &configs {
             t += &format!("| {} |", cell(c));
             for s in &scenes {

@@ -12,7 +12,7 @@ use crate::sample::Sample;
 use crate::scene::{attitude_error, gauss_step, Scene};
 use crate::scenes;
 use crate::study::{CsvFile, Study};
-use crate::table::{cell, Csv, Table};
+use crate::table::{self, cell, Csv, Table};
 use quatprop::input::GaussPoints;
 use quatprop::scheme::{Magnus4, SchemeKind};
 use quatprop::stabilize::Normalize;
@@ -28,9 +28,6 @@ impl Study for Sensor {
     const NAME: &'static str = "sensor";
     const ABOUT: &'static str = "Sensor realism: noise, bias, 16-bit counts, saturation, dropped samples, dt jitter";
     const CSV: &'static [CsvFile] = &[CsvFile::table::<SensorRow>()];
-    fn figures(&self) -> Vec<String> {
-        Vec::new()
-    }
     fn run(&self, ctx: &mut Ctx, sweep: &Sweep) {
         // Seconds of the scene: the full 5.37 s cost a fraction of a second.
         let horizon = sweep.horizon.unwrap_or(ctx.scale.pick(1.37, 5.37, 5.37));
@@ -38,6 +35,8 @@ impl Study for Sensor {
         ctx.section("sensor realism", |c| sensor_study(c, &catalogue, sweep, horizon));
     }
 }
+
+// Field declarations with their units: alike in form only.
 
 /// What the gyro does to the true rate. Rates in rad/s, times in s.
 #[derive(Clone, Copy, Debug)]
@@ -257,29 +256,20 @@ pub struct SensorRow {
     pub saturated_samples: u64,
     pub dropped_samples: u64,
 }
+// A row type names its file and renders its table through the `Csv` and `Table` impls (alike in each).
 impl Csv for SensorRow {
     const FILE: &'static str = "sensor_realism.csv";
 }
 impl Table for SensorRow {
     /// Configurations down, sensor models across; then the stream's own row and its sample counts.
     fn render(rows: &[Self]) -> String {
-        let mut sensors: Vec<&str> = Vec::new();
-        let mut configs: Vec<&str> = Vec::new();
-        for r in rows {
-            if !sensors.contains(&r.sensor.as_str()) {
-                sensors.push(&r.sensor);
-            }
-            if r.configuration != STREAM_ROW && !configs.contains(&r.configuration.as_str()) {
-                configs.push(&r.configuration);
-            }
-        }
+        let sensors = table::distinct(rows, |r| r.sensor.as_str());
+        let mut configs = table::distinct(rows, |r| r.configuration.as_str());
+        configs.retain(|c| *c != STREAM_ROW);
+        let titles: Vec<String> = sensors.iter().map(|s| cell(s)).collect();
         let mut t = format!(
             "| configuration | {} |\n|---|{}\n",
-            sensors
-                .iter()
-                .map(|s| cell(s))
-                .collect::<Vec<_>>()
-                .join(" | "),
+            titles.join(" | "),
             "---|".repeat(sensors.len())
         );
         let get = |c: &str, s: &str| rows.iter().find(|r| r.configuration == c && r.sensor == s);

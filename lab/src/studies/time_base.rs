@@ -4,6 +4,7 @@
 //! arithmetic recovers; `frontend::FixedPeriod` carries the rounding so the `dt`s sum to k·0.001.
 
 use crate::dd;
+use crate::series;
 use crate::plot::{plot, Axis, Series};
 use crate::table::{self, sci, Csv, Table};
 use crate::args::{Horizon, ReportArgs};
@@ -20,6 +21,7 @@ use serde::{Deserialize, Serialize};
 /// The time base (sub-command `time-base`).
 pub struct TimeBaseStudy;
 
+// The `Study` impl each study spells out (its name, files and run: lab/README.md, adding a study).
 impl Study for TimeBaseStudy {
     type Args = Horizon;
     const NAME: &'static str = "time-base";
@@ -110,14 +112,7 @@ fn is_decade(k: u64) -> bool {
 
 /// Checkpoints every half decade from 10⁴ to `total`.
 pub fn checkpoints(total: u64) -> Vec<u64> {
-    let mut v = Vec::new();
-    let mut c = 1e4f64;
-    while (c.round() as u64) < total {
-        v.push(c.round() as u64);
-        c *= 10f64.sqrt();
-    }
-    v.push(total);
-    v
+    series::half_decades(1e4, total)
 }
 
 /// Runs one time base to `total` steps; one row per checkpoint.

@@ -32,6 +32,7 @@ impl Study for WorkPrecision {
     type Args = Sweep;
     const NAME: &'static str = "work-precision";
     const ABOUT: &'static str = "Error against cost per scene and precision, quatprop against the peers";
+    // The files it writes, one a line (a list, as every study's).
     const CSV: &'static [CsvFile] = &[
         CsvFile::table::<WpHeadline>(),
         CsvFile::table::<EqualCostRow>(),
@@ -418,45 +419,53 @@ fn rows_rate(rows: &[WpRow]) -> u32 {
 
 impl Table for WpStabilizers {
     fn render(rows: &[Self]) -> String {
-        let mut rates: Vec<u32> = rows.iter().map(|r| r.0.rate_hz).collect();
-        rates.sort_unstable();
-        rates.dedup();
-        let mut t = format!(
-            "| configuration | precision |{}\n|---|---|{}\n",
-            rates
-                .iter()
-                .map(|r| format!(" {r} Hz: max error / ns |"))
-                .collect::<String>(),
-            "---|".repeat(rates.len())
-        );
-        let mut keys: Vec<(&str, &str)> = Vec::new();
-        for r in rows {
-            let k = (r.0.configuration.as_str(), r.0.precision.as_str());
-            if !keys.contains(&k) {
-                keys.push(k);
-            }
-        }
-        for (c, p) in keys {
-            t += &format!("| {} | {p} |", cell(c));
-            for hz in &rates {
-                let r = rows
-                    .iter()
-                    .find(|r| r.0.configuration == c && r.0.precision == p && r.0.rate_hz == *hz);
-                t += &match r {
-                    Some(r) if r.0.accepted() => {
-                        format!(
-                            " {:.2e} / {:.1} |",
-                            r.0.max_error_rad, r.0.host_ns_per_sample
-                        )
-                    }
-                    Some(r) => format!(" {} |", r.0.errors()),
-                    None => " – |".into(),
-                };
-            }
-            t += "\n";
-        }
-        t
+        by_rate(
+            rows,
+            ["configuration", "precision"],
+            |hz| format!("{hz} Hz: max error / ns"),
+            |r| (r.0.configuration.as_str(), r.0.precision.as_str(), r.0.rate_hz),
+            |r| {
+                if r.0.accepted() {
+                    format!("{:.2e} / {:.1}", r.0.max_error_rad, r.0.host_ns_per_sample)
+                } else {
+                    r.0.errors()
+                }
+            },
+        )
     }
+}
+
+/// A table of one line per pair of keys (in the order of the rows) and one column per rate (ascending):
+/// `key` gives a row's two keys and rate, `rate_title` a rate column's title, `text` a cell's text (`–`
+/// where no row has that line's keys at that rate). The first key is escaped for the table.
+fn by_rate<'a, R>(
+    rows: &'a [R],
+    key_titles: [&str; 2],
+    rate_title: impl Fn(u32) -> String,
+    key: impl Fn(&'a R) -> (&'a str, &'a str, u32),
+    text: impl Fn(&R) -> String,
+) -> String {
+    let mut rates: Vec<u32> = rows.iter().map(|r| key(r).2).collect();
+    rates.sort_unstable();
+    rates.dedup();
+    let mut cols: Vec<String> = key_titles.iter().map(|k| k.to_string()).collect();
+    cols.extend(rates.iter().map(|&hz| rate_title(hz)));
+    let mut t = table::header(&cols.iter().map(String::as_str).collect::<Vec<_>>());
+    let lines = table::distinct(rows, |r| {
+        let (a, b, _) = key(r);
+        (a, b)
+    });
+    for (a, b) in lines {
+        t += &format!("| {} | {b} |", cell(a));
+        for &hz in &rates {
+            match rows.iter().find(|r| key(r) == (a, b, hz)) {
+                Some(r) => t += &format!(" {} |", text(r)),
+                None => t += " – |",
+            }
+        }
+        t += "\n";
+    }
+    t
 }
 
 impl Table for WpHeadline {
@@ -896,44 +905,21 @@ impl Csv for PeerLoopRow {
 }
 impl Table for PeerLoopRow {
     fn render(rows: &[Self]) -> String {
-        let mut rates: Vec<u32> = rows.iter().map(|r| r.rate_hz).collect();
-        rates.sort_unstable();
-        rates.dedup();
-        let mut t = format!(
-            "| peer | precision |{}\n|---|---|{}\n",
-            rates
-                .iter()
-                .map(|r| format!(" {r} Hz: wrapper / loop ns (ratio) |"))
-                .collect::<String>(),
-            "---|".repeat(rates.len())
-        );
-        let mut keys: Vec<(&str, &str)> = Vec::new();
-        for r in rows {
-            let k = (r.peer.as_str(), r.precision.as_str());
-            if !keys.contains(&k) {
-                keys.push(k);
-            }
-        }
-        for (peer, prec) in keys {
-            t += &format!("| {} | {prec} |", cell(peer));
-            for hz in &rates {
-                t += &match rows
-                    .iter()
-                    .find(|r| r.peer == peer && r.precision == prec && r.rate_hz == *hz)
-                {
-                    Some(r) => format!(
-                        " {:.1} / {:.1} ({:.2}){} |",
-                        r.wrapper_ns_per_sample,
-                        r.loop_ns_per_sample,
-                        r.wrapper_ns_per_sample / r.loop_ns_per_sample,
-                        if r.same_errors { "" } else { ", **errors differ**" }
-                    ),
-                    None => " – |".into(),
-                };
-            }
-            t += "\n";
-        }
-        t
+        by_rate(
+            rows,
+            ["peer", "precision"],
+            |hz| format!("{hz} Hz: wrapper / loop ns (ratio)"),
+            |r| (r.peer.as_str(), r.precision.as_str(), r.rate_hz),
+            |r| {
+                format!(
+                    "{:.1} / {:.1} ({:.2}){}",
+                    r.wrapper_ns_per_sample,
+                    r.loop_ns_per_sample,
+                    r.wrapper_ns_per_sample / r.loop_ns_per_sample,
+                    if r.same_errors { "" } else { ", **errors differ**" }
+                )
+            },
+        )
     }
 }
 
@@ -1257,6 +1243,7 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let mut csv: Vec<WpStabilizers> = Vec::new();
     let mut figures = String::new();
     let mut timed = Vec::new();
+    // The same steps per precision as the scenes' sweep, with this table's row type and figure title.
     for prec in opt.precisions() {
         let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.timing());
         timed.extend(points.iter().cloned());
