@@ -9,19 +9,14 @@ mod filter;
 mod support;
 use filter::{Filter, FilterError, Params, Pushed};
 use quatprop::{Quat, Vec3};
-use support::GaussNoise as Noise;
+use support::{tumbling_rate, GaussNoise as Noise};
 
 /// The true body rate at time t (rad/s): still for the first 20 s, then a slow tumbling motion.
 fn rate(t: f64) -> Vec3<f64> {
     if t < 20.0 {
         Vec3::ZERO
     } else {
-        let s = t - 20.0;
-        Vec3::new(
-            0.6 * (0.31 * s).sin(),
-            0.5 * (0.23 * s + 1.0).sin(),
-            0.8 * (0.17 * s + 2.0).cos(),
-        )
+        tumbling_rate(t - 20.0)
     }
 }
 

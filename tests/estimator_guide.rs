@@ -203,20 +203,14 @@ impl Filter {
 // [guide: end]
 
 mod support;
-use support::GaussNoise as Noise;
+use support::{tumbling_rate, GaussNoise as Noise};
 
-/// The true body rate (rad/s, body axes): still for the first 10 s, then a tumbling motion that turns
-/// every body axis through the vertical (up to about 1.1 rad/s).
+/// The true body rate (rad/s, body axes): still for the first 10 s, then the tumbling motion.
 fn true_rate(t: f64) -> Vec3<f64> {
     if t < 10.0 {
         return Vec3::ZERO;
     }
-    let s = t - 10.0;
-    Vec3::new(
-        0.6 * (0.31 * s).sin(),
-        0.5 * (0.23 * s + 1.0).sin(),
-        0.8 * (0.17 * s + 2.0).cos(),
-    )
+    tumbling_rate(t - 10.0)
 }
 
 fn to32(v: Vec3<f64>) -> Vec3<f32> {

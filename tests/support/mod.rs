@@ -305,6 +305,16 @@ impl Xorshift {
     }
 }
 
+/// The estimator tests' tumbling motion (rad/s, body axes) `s` seconds after it starts: slow incommensurate
+/// turns about every axis that take each body axis through the vertical (up to about 1.1 rad/s).
+pub fn tumbling_rate(s: f64) -> Vec3<f64> {
+    Vec3::new(
+        0.6 * (0.31 * s).sin(),
+        0.5 * (0.23 * s + 1.0).sin(),
+        0.8 * (0.17 * s + 2.0).cos(),
+    )
+}
+
 /// Gaussian noise for the estimator tests: xorshift64* from the raw state it is given (not mixed),
 /// uniforms at the centres of the 2⁻⁵³ bins (never 0, for the logarithm) and Box–Muller's first deviate.
 /// A stream of its own, kept bit for bit: the estimator tests' thresholds were set on it.
