@@ -317,14 +317,10 @@ fn every_input<S: Scheme<f32> + core::fmt::Debug + PartialEq>(
     )
 }
 
-fn check_case(
-    s: SchemeChoice,
-    z: StabilizerKind,
-    coning: ConingKind,
-    q0: Quat<f32>,
-    calls: &[Call],
-    seen: &mut [Outcomes; 6],
-) -> Result<(), TestCaseError> {
+/// Runs one generated case through every input model.
+fn check_case(case: &Case, seen: &mut [Outcomes; 6]) -> Result<(), TestCaseError> {
+    let (s, z, coning, q0, ref calls) = *case;
+    let q0 = Quat::new(q0.0, q0.1, q0.2, q0.3);
     if s.index < SchemeKind::ALL.len() {
         return every_input(SchemeKind::ALL[s.index], z, coning, q0, calls, seen);
     }
@@ -382,11 +378,8 @@ proptest! {
     })]
 
     #[test]
-    fn every_call_is_ok_and_finite_or_an_error_that_changes_nothing(
-        (s, z, coning, q0, calls) in any_case()
-    ) {
-        let q0 = Quat::new(q0.0, q0.1, q0.2, q0.3);
-        check_case(s, z, coning, q0, &calls, &mut [Outcomes::default(); 6])?;
+    fn every_call_is_ok_and_finite_or_an_error_that_changes_nothing(case in any_case()) {
+        check_case(&case, &mut [Outcomes::default(); 6])?;
     }
 
     #[test]
@@ -652,9 +645,8 @@ fn the_invariant_property_reaches_every_outcome() {
     let strategy = any_case();
     let mut seen = [Outcomes::default(); 6];
     for _ in 0..1000 {
-        let (s, z, coning, q0, calls) = strategy.new_tree(&mut runner).unwrap().current();
-        let q0 = Quat::new(q0.0, q0.1, q0.2, q0.3);
-        check_case(s, z, coning, q0, &calls, &mut seen).unwrap();
+        let case = strategy.new_tree(&mut runner).unwrap().current();
+        check_case(&case, &mut seen).unwrap();
     }
     println!("{seen:#?}");
     for (model, o) in [
