@@ -158,27 +158,31 @@ impl Params {
     }
 
     fn valid(&self) -> bool {
-        let pos = |v: f64| v > 0.0 && v.is_finite();
-        let nonneg = |v: f64| v >= 0.0 && v.is_finite();
-        pos(self.sample_period)
+        let positive = [
+            self.sample_period,
+            self.gravity,
+            self.initial_tilt,
+            self.initial_bias,
+            self.rest_gate,
+        ];
+        let non_negative = [
+            self.gyro_arw,
+            self.gyro_bias_walk,
+            self.gyro_scale,
+            self.accel_noise,
+            self.accel_floor,
+            self.dynamic,
+            self.rotating,
+            self.gate,
+            self.gate_timeout,
+            self.accel_tau,
+            self.rest_window,
+            self.group_delay,
+        ];
+        positive.iter().all(|&v| v > 0.0 && v.is_finite())
+            && non_negative.iter().all(|&v| v >= 0.0 && v.is_finite())
             && self.predict_every >= 1
-            && nonneg(self.gyro_arw)
-            && nonneg(self.gyro_bias_walk)
-            && nonneg(self.gyro_scale)
-            && nonneg(self.accel_noise)
-            && nonneg(self.accel_floor)
-            && pos(self.gravity)
-            && nonneg(self.dynamic)
-            && nonneg(self.rotating)
-            && nonneg(self.gate)
-            && nonneg(self.gate_timeout)
-            && pos(self.initial_tilt)
-            && pos(self.initial_bias)
-            && nonneg(self.accel_tau)
             && self.update_every >= 1
-            && nonneg(self.rest_window)
-            && pos(self.rest_gate)
-            && nonneg(self.group_delay)
             && (self.accel_noise > 0.0 || self.accel_floor > 0.0)
     }
 }

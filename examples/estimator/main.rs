@@ -38,32 +38,50 @@ fn usage() -> ExitCode {
     ExitCode::from(1)
 }
 
+/// Where a parameter lives in [`Params`]: a real number or a whole one.
+enum Field<'a> {
+    Real(&'a mut f64),
+    Whole(&'a mut u32),
+}
+
+/// Every parameter with its name: the names `--set` takes, in the order `--params` prints them.
+fn fields(p: &mut Params) -> [(&'static str, Field<'_>); 19] {
+    use Field::{Real, Whole};
+    [
+        ("sample_period", Real(&mut p.sample_period)),
+        ("predict_every", Whole(&mut p.predict_every)),
+        ("gyro_arw", Real(&mut p.gyro_arw)),
+        ("gyro_bias_walk", Real(&mut p.gyro_bias_walk)),
+        ("gyro_scale", Real(&mut p.gyro_scale)),
+        ("accel_noise", Real(&mut p.accel_noise)),
+        ("accel_floor", Real(&mut p.accel_floor)),
+        ("gravity", Real(&mut p.gravity)),
+        ("dynamic", Real(&mut p.dynamic)),
+        ("rotating", Real(&mut p.rotating)),
+        ("gate", Real(&mut p.gate)),
+        ("gate_timeout", Real(&mut p.gate_timeout)),
+        ("initial_tilt", Real(&mut p.initial_tilt)),
+        ("initial_bias", Real(&mut p.initial_bias)),
+        ("accel_tau", Real(&mut p.accel_tau)),
+        ("update_every", Whole(&mut p.update_every)),
+        ("rest_window", Real(&mut p.rest_window)),
+        ("rest_gate", Real(&mut p.rest_gate)),
+        ("group_delay", Real(&mut p.group_delay)),
+    ]
+}
+
 /// The parameters as `name = value` lines.
 fn describe(p: &Params) -> String {
-    format!(
-        "sample_period = {}\npredict_every = {}\ngyro_arw = {}\ngyro_bias_walk = {}\ngyro_scale = {}\naccel_noise = {}\n\
-         accel_floor = {}\ngravity = {}\ndynamic = {}\nrotating = {}\ngate = {}\ngate_timeout = {}\ninitial_tilt = {}\n\
-         initial_bias = {}\naccel_tau = {}\nupdate_every = {}\nrest_window = {}\nrest_gate = {}\ngroup_delay = {}\n",
-        p.sample_period,
-        p.predict_every,
-        p.gyro_arw,
-        p.gyro_bias_walk,
-        p.gyro_scale,
-        p.accel_noise,
-        p.accel_floor,
-        p.gravity,
-        p.dynamic,
-        p.rotating,
-        p.gate,
-        p.gate_timeout,
-        p.initial_tilt,
-        p.initial_bias,
-        p.accel_tau,
-        p.update_every,
-        p.rest_window,
-        p.rest_gate,
-        p.group_delay
-    )
+    let mut p = *p;
+    let mut out = String::new();
+    for (name, field) in fields(&mut p) {
+        match field {
+            Field::Real(v) => writeln!(out, "{name} = {v}"),
+            Field::Whole(v) => writeln!(out, "{name} = {v}"),
+        }
+        .unwrap();
+    }
+    out
 }
 
 fn set(p: &mut Params, assignment: &str) -> Result<(), String> {
@@ -74,37 +92,19 @@ fn set(p: &mut Params, assignment: &str) -> Result<(), String> {
         .trim()
         .parse()
         .map_err(|_| format!("--set {assignment}: not a number"))?;
-    match name.trim() {
-        "sample_period" => p.sample_period = v,
-        "predict_every" => {
-            p.predict_every = value
+    let name = name.trim();
+    let (_, field) = fields(p)
+        .into_iter()
+        .find(|(n, _)| *n == name)
+        .ok_or_else(|| format!("--set: unknown parameter {name}"))?;
+    match field {
+        Field::Real(x) => *x = v,
+        Field::Whole(x) => {
+            *x = value
                 .trim()
                 .parse()
                 .map_err(|_| format!("--set {assignment}: not a whole number"))?
         }
-        "gyro_arw" => p.gyro_arw = v,
-        "gyro_bias_walk" => p.gyro_bias_walk = v,
-        "gyro_scale" => p.gyro_scale = v,
-        "accel_noise" => p.accel_noise = v,
-        "accel_floor" => p.accel_floor = v,
-        "gravity" => p.gravity = v,
-        "dynamic" => p.dynamic = v,
-        "rotating" => p.rotating = v,
-        "gate" => p.gate = v,
-        "gate_timeout" => p.gate_timeout = v,
-        "initial_tilt" => p.initial_tilt = v,
-        "initial_bias" => p.initial_bias = v,
-        "accel_tau" => p.accel_tau = v,
-        "update_every" => {
-            p.update_every = value
-                .trim()
-                .parse()
-                .map_err(|_| format!("--set {assignment}: not a whole number"))?
-        }
-        "rest_window" => p.rest_window = v,
-        "rest_gate" => p.rest_gate = v,
-        "group_delay" => p.group_delay = v,
-        other => return Err(format!("--set: unknown parameter {other}")),
     }
     Ok(())
 }
