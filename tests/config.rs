@@ -92,6 +92,8 @@ struct CompactBurst<'a, T> {
     period: &'a mut FixedPeriod<T>,
 }
 
+// Both loops spelled out with their bounds: they are `Visit`'s signatures, which every implementation
+// repeats (the C API's and the firmware's too).
 impl<T: Real> Visit<T> for CompactBurst<'_, T> {
     type Output = Result<usize, Refused>;
     fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output

@@ -53,6 +53,8 @@ fn rate(m: Motion, k: u64) -> Vec3<f64> {
     }
 }
 
+// The f32 propagator against its f64 shadow is also examples/own_error.rs's `run`: spelled out in both, as
+// the example stands alone for users to copy and this test measures its own bound's terms as it goes.
 /// Own error of an f32 state adding with `acc` after `STEPS` steps, and the bound's per-step history term
 /// `max|Δω|` (rad/s).
 fn own_error<I32, I64, A>(m: Motion, i32: I32, i64: I64, acc: A) -> (f64, f64)
