@@ -7,12 +7,11 @@
 
 mod support;
 
-use quatprop::input::coning::ConingKind;
-use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::input::{History, Hold, InputModel, TwiceRate};
 use quatprop::scheme::{Baumgarte, Rk4, Scheme, SchemeKind};
 use quatprop::stabilize::{Every, Normalize, Off, Stabilizer, StabilizerKind};
-use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Vec3};
-use support::state;
+use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
+use support::{for_every_input_model, state, InputModelCheck};
 
 fn stabilizers() -> [StabilizerKind; 4] {
     [
@@ -110,18 +109,26 @@ where
     }
 }
 
+/// [`check_config`] of one scheme and stabilizer, for each input model (unsaturated samples).
+struct EveryInputModel<S> {
+    scheme: S,
+    z: StabilizerKind,
+}
+
+impl<T: Real, S: Scheme<T> + core::fmt::Debug + PartialEq> InputModelCheck<T>
+    for EveryInputModel<S>
+{
+    fn check<I>(&mut self, input: I, sample: fn(Vec3<T>, bool) -> I::Sample)
+    where
+        I: InputModel<T> + core::fmt::Debug + PartialEq,
+    {
+        check_config(self.scheme, input, self.z, &|v| sample(v, false));
+    }
+}
+
 fn check_scheme<T: Real, S: Scheme<T> + core::fmt::Debug + PartialEq>(scheme: S) {
-    let gyro = |v: Vec3<T>| GyroSample::new(v);
-    let delta = |v: Vec3<T>| DeltaAngle::new(v * T::from_f64(0.01));
     for z in stabilizers() {
-        check_config(scheme, Hold, z, &gyro);
-        check_config(scheme, Linear::new(), z, &gyro);
-        check_config(scheme, History::new(), z, &gyro);
-        check_config(scheme, TwiceRate::new(), z, &gyro);
-        check_config(scheme, GaussPoints::new(), z, &gyro);
-        for c in ConingKind::ALL {
-            check_config(scheme, DeltaAngles::new(c), z, &delta);
-        }
+        for_every_input_model(&mut EveryInputModel { scheme, z });
     }
 }
 

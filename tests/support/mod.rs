@@ -1,10 +1,11 @@
 //! Exact reference motions and helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use quatprop::input::{GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::input::coning::ConingKind;
+use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
 use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::{Off, Stabilizer};
-use quatprop::{Error, GyroSample, Propagator, Quat, Real, Vec3};
+use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Vec3};
 
 /// `√3/6`: half the distance between the two Gauss–Legendre nodes on [0, 1] (typed here independently of the
 /// crate, whose constant is private).
@@ -86,6 +87,37 @@ impl Input {
             Input::TwiceRate => vec![(t + 0.5 * h, 0.5 * h), (t + h, 0.5 * h)],
             Input::GaussPoints => vec![(t + GAUSS_1 * h, 0.5 * h), (t + GAUSS_2 * h, 0.5 * h)],
         }
+    }
+}
+
+/// A check to run on each input model (see [`for_every_input_model`]).
+pub trait InputModelCheck<T: Real> {
+    /// Checks `input`, fed with `sample(v, saturated)`: the rate `v`, or for an angle-increment model the
+    /// increment `v · 0.01 s` (a 100 Hz gyro).
+    fn check<I>(&mut self, input: I, sample: fn(Vec3<T>, bool) -> I::Sample)
+    where
+        I: InputModel<T> + core::fmt::Debug + PartialEq;
+}
+
+/// Runs `check` on every input model: `Hold`, `Linear`, `History`, `TwiceRate` and `GaussPoints` with
+/// rates, then `DeltaAngles` with each coning correction.
+pub fn for_every_input_model<T: Real>(check: &mut impl InputModelCheck<T>) {
+    fn rate<T>(rate: Vec3<T>, saturated: bool) -> GyroSample<T> {
+        GyroSample { rate, saturated }
+    }
+    fn increment<T: Real>(rate: Vec3<T>, saturated: bool) -> DeltaAngle<T> {
+        DeltaAngle {
+            angle: rate * T::from_f64(0.01),
+            saturated,
+        }
+    }
+    check.check(Hold, rate);
+    check.check(Linear::new(), rate);
+    check.check(History::new(), rate);
+    check.check(TwiceRate::new(), rate);
+    check.check(GaussPoints::new(), rate);
+    for c in ConingKind::ALL {
+        check.check(DeltaAngles::new(c), increment);
     }
 }
 
