@@ -389,7 +389,18 @@ pub trait LabReal: PeerReal {
         Some(match p {
             Peer::Fusion => Self::fusion_peer(q0)?,
             Peer::GlamScaledAxis => Self::glam_peer(q0),
-            _ => nalgebra_peer(p, q0, nominal_dt)?,
+            Peer::AhrsMadgwick => Box::new(AhrsRun {
+                m: ahrs::Madgwick::new_with_quat(nominal_dt, Self::ZERO, to_ahrs(q0)),
+                prev: false,
+            }),
+            Peer::NalgebraRk4 => Box::new(NalgebraRk4Run {
+                q: to_na(q0),
+                prev: None,
+            }),
+            Peer::NalgebraScaledAxis => Box::new(NalgebraAxisRun {
+                q: to_na(q0),
+                prev: None,
+            }),
         })
     }
     /// The peer's plain loop (`crate::peer_loops`) over a whole stream from `q0`: its attitude after the
@@ -403,7 +414,9 @@ pub trait LabReal: PeerReal {
         Some(match p {
             Peer::Fusion => Self::fusion_loop(q0, samples)?,
             Peer::GlamScaledAxis => Self::glam_loop(q0, samples),
-            _ => nalgebra_peer_loop(p, q0, nominal_dt, samples)?,
+            Peer::AhrsMadgwick => peer_loops::ahrs_madgwick(q0, nominal_dt, samples),
+            Peer::NalgebraRk4 => peer_loops::nalgebra_rk4(q0, samples),
+            Peer::NalgebraScaledAxis => peer_loops::nalgebra_scaled_axis(q0, samples),
         })
     }
 }
@@ -436,21 +449,6 @@ impl LabReal for f64 {
     fn glam_loop(q0: Quat<f64>, samples: &[Sample<f64>]) -> Quat<f64> {
         peer_loops::dglam_scaled_axis(q0, samples)
     }
-}
-
-/// The nalgebra-based peers' plain loops (`ahrs` and nalgebra), in either precision.
-fn nalgebra_peer_loop<T: LabReal>(
-    p: Peer,
-    q0: Quat<T>,
-    nominal_dt: T,
-    samples: &[Sample<T>],
-) -> Option<Quat<T>> {
-    Some(match p {
-        Peer::AhrsMadgwick => peer_loops::ahrs_madgwick(q0, nominal_dt, samples),
-        Peer::NalgebraRk4 => peer_loops::nalgebra_rk4(q0, samples),
-        Peer::NalgebraScaledAxis => peer_loops::nalgebra_scaled_axis(q0, samples),
-        Peer::Fusion | Peer::GlamScaledAxis => return None,
-    })
 }
 
 /// A peer's plain loop as an [`Integrator`] for the accuracy runs: it keeps the samples fed so far and runs
@@ -694,28 +692,6 @@ macro_rules! glam_run {
 }
 glam_run!(GlamRun, f32, glam::Quat, glam::Vec3);
 glam_run!(DGlamRun, f64, glam::DQuat, glam::DVec3);
-
-fn nalgebra_peer<T: LabReal>(
-    p: Peer,
-    q0: Quat<T>,
-    nominal_dt: T,
-) -> Option<Box<dyn Integrator<T>>> {
-    Some(match p {
-        Peer::AhrsMadgwick => Box::new(AhrsRun {
-            m: ahrs::Madgwick::new_with_quat(nominal_dt, T::ZERO, to_ahrs(q0)),
-            prev: false,
-        }),
-        Peer::NalgebraRk4 => Box::new(NalgebraRk4Run {
-            q: to_na(q0),
-            prev: None,
-        }),
-        Peer::NalgebraScaledAxis => Box::new(NalgebraAxisRun {
-            q: to_na(q0),
-            prev: None,
-        }),
-        Peer::Fusion | Peer::GlamScaledAxis => return None,
-    })
-}
 
 /// `ahrs` has no time argument: it integrates every sample over its fixed `sample_period` (jitter and gaps
 /// are invisible to it).

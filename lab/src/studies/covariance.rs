@@ -221,6 +221,32 @@ struct Dense<T> {
     joseph: bool,
 }
 
+/// `A B`, each element summed in index order.
+fn product<T: Real>(a: &M6<T>, b: &M6<T>) -> M6<T> {
+    product_by(a, |k, j| b[k][j])
+}
+
+/// `A Bᵀ`, each element summed in index order.
+fn product_transposed<T: Real>(a: &M6<T>, b: &M6<T>) -> M6<T> {
+    product_by(a, |k, j| b[j][k])
+}
+
+/// `A B` with `B`'s element (k, j) given by `b(k, j)`, each element summed in index order.
+#[inline(always)]
+fn product_by<T: Real>(a: &M6<T>, b: impl Fn(usize, usize) -> T) -> M6<T> {
+    let mut c = [[T::ZERO; 6]; 6];
+    for i in 0..6 {
+        for j in 0..6 {
+            let mut s = T::ZERO;
+            for k in 0..6 {
+                s += a[i][k] * b(k, j);
+            }
+            c[i][j] = s;
+        }
+    }
+    c
+}
+
 fn symmetrize<T: Real>(p: &mut M6<T>) {
     for i in 0..6 {
         for j in i + 1..6 {
@@ -242,24 +268,11 @@ impl<T: Real> Dense<T> {
 
     /// `P ← Φ P Φᵀ + Q` (then symmetrized for the Joseph form).
     fn predict(&mut self, phi: &M6<T>, q: &M6<T>) {
-        let mut a = [[T::ZERO; 6]; 6];
+        let a = product(phi, &self.p);
+        let mut p = product_transposed(&a, phi);
         for i in 0..6 {
             for j in 0..6 {
-                let mut s = T::ZERO;
-                for k in 0..6 {
-                    s += phi[i][k] * self.p[k][j];
-                }
-                a[i][j] = s;
-            }
-        }
-        let mut p = [[T::ZERO; 6]; 6];
-        for i in 0..6 {
-            for j in 0..6 {
-                let mut s = T::ZERO;
-                for k in 0..6 {
-                    s += a[i][k] * phi[j][k];
-                }
-                p[i][j] = s + q[i][j];
+                p[i][j] += q[i][j];
             }
         }
         if self.joseph {
@@ -308,24 +321,11 @@ impl<T: Real> Dense<T> {
                     a[i][j] = id - k[i] * h[j];
                 }
             }
-            let mut ap = [[T::ZERO; 6]; 6];
+            let ap = product(&a, p);
+            let mut out = product_transposed(&ap, &a);
             for i in 0..6 {
                 for j in 0..6 {
-                    let mut s = T::ZERO;
-                    for m in 0..6 {
-                        s += a[i][m] * p[m][j];
-                    }
-                    ap[i][j] = s;
-                }
-            }
-            let mut out = [[T::ZERO; 6]; 6];
-            for i in 0..6 {
-                for j in 0..6 {
-                    let mut s = T::ZERO;
-                    for m in 0..6 {
-                        s += ap[i][m] * a[j][m];
-                    }
-                    out[i][j] = s + r * k[i] * k[j];
+                    out[i][j] += r * k[i] * k[j];
                 }
             }
             symmetrize(&mut out);
@@ -336,6 +336,12 @@ impl<T: Real> Dense<T> {
     fn matrix64(&self) -> M64 {
         self.p.map(|r| r.map(Real::to_f64))
     }
+}
+
+/// Every form's covariance in f64, in the order of [`FORMS`]: the two dense forms, then the four `Ud`s.
+fn matrices64(naive: &Dense<f32>, joseph: &Dense<f32>, uds: [&Ud<f32, 6>; 4]) -> [M64; 6] {
+    let [ud, ud_comp, ud_rounded, ud_comp_rounded] = uds.map(ud_matrix64);
+    [naive.matrix64(), joseph.matrix64(), ud, ud_comp, ud_rounded, ud_comp_rounded]
 }
 
 /// The covariance a `Ud` holds, `U D Uᵀ` formed in f64 from its factors (exactly what the factors
@@ -683,14 +689,7 @@ fn run(total: u64, bar: &indicatif::ProgressBar) -> Outcome {
                 let _ = ud64.update(&i64_.h[m], r64);
             }
             let r = reference.p;
-            let forms = [
-                naive.matrix64(),
-                joseph.matrix64(),
-                ud_matrix64(&ud),
-                ud_matrix64(&ud_comp),
-                ud_matrix64(&ud_rounded),
-                ud_matrix64(&ud_comp_rounded),
-            ];
+            let forms = matrices64(&naive, &joseph, [&ud, &ud_comp, &ud_rounded, &ud_comp_rounded]);
             for (slot, p) in broken.iter_mut().zip(&forms) {
                 if slot.is_none() {
                     if let Some(why) = invalid(p, &r) {
@@ -704,14 +703,7 @@ fn run(total: u64, bar: &indicatif::ProgressBar) -> Outcome {
         }
         let r = reference.p;
         let er = eigenvalues(&r);
-        let forms = [
-            naive.matrix64(),
-            joseph.matrix64(),
-            ud_matrix64(&ud),
-            ud_matrix64(&ud_comp),
-            ud_matrix64(&ud_rounded),
-            ud_matrix64(&ud_comp_rounded),
-        ];
+        let forms = matrices64(&naive, &joseph, [&ud, &ud_comp, &ud_rounded, &ud_comp_rounded]);
         for (name, p) in FORMS.iter().zip(&forms) {
             let e = eigenvalues(p);
             let (err, i, j) = worst_element(p, &r);

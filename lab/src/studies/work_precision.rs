@@ -1028,7 +1028,8 @@ fn fmt_err(p: &Point) -> String {
     }
 }
 
-/// Runs `configs` on `scene` in `prec`.
+/// Runs `configs` on `scene` in `prec`. (Its parameters are [`sweep`]'s, which it forwards in each
+/// precision.)
 pub fn sweep_in(
     ctx: &mut Ctx,
     prec: Precision,
@@ -1129,6 +1130,24 @@ impl Options {
     }
 }
 
+/// One precision's points on `scene`: its CSV rows (each wrapped by `row`) added to `csv`, and its figure,
+/// `figure = (stem, what)`: the file `{stem}{scene}_{precision}` titled "{scene}, {precision}: {what}".
+/// Returns the figure's Markdown.
+fn rows_and_figure<R>(
+    ctx: &mut Ctx,
+    scene: &dyn Scene,
+    prec: Precision,
+    points: &[Point],
+    csv: &mut Vec<R>,
+    row: fn(WpRow) -> R,
+    (stem, what): (&str, &str),
+) -> String {
+    csv.extend(wp_rows(scene.key(), prec, points).into_iter().map(row));
+    let name = format!("{stem}{}_{}", scene.key(), prec.name());
+    let title = format!("{}, {}: {what}", scene.name(), prec.name());
+    plot_points(ctx, &name, &title, points)
+}
+
 /// The reference rate of a table: 1 kHz if swept, else the middle rate.
 fn table_rate(rates: &[u32]) -> u32 {
     if rates.contains(&1000) {
@@ -1172,18 +1191,8 @@ pub fn per_scene(
             if prec == Precision::F32 && EQUAL_COST_MOTIONS.contains(&scene.key()) {
                 motions.push((scene.name().to_string(), points.clone()));
             }
-            csv.extend(
-                wp_rows(scene.key(), prec, &points)
-                    .into_iter()
-                    .map(WpScenes),
-            );
-            let name = format!("wp_{}_{}", scene.key(), prec.name());
-            figures += &plot_points(
-                ctx,
-                &name,
-                &format!("{}, {}: error against host time", scene.name(), prec.name()),
-                &points,
-            );
+            let figure = ("wp_", "error against host time");
+            figures += &rows_and_figure(ctx, scene.as_ref(), prec, &points, &mut csv, WpScenes, figure);
             let r = table_rate(&rates);
             let best = |peer: bool| {
                 points
@@ -1243,22 +1252,11 @@ pub fn stabilizers(ctx: &mut Ctx, scene: &dyn Scene, opt: &Options) -> String {
     let mut csv: Vec<WpStabilizers> = Vec::new();
     let mut figures = String::new();
     let mut timed = Vec::new();
-    // The same steps per precision as the scenes' sweep, with this table's row type and figure title.
     for prec in opt.precisions() {
         let points = sweep_in(ctx, prec, scene, &configs, &rates, horizon, opt.timing());
         timed.extend(points.iter().cloned());
-        csv.extend(
-            wp_rows(scene.key(), prec, &points)
-                .into_iter()
-                .map(WpStabilizers),
-        );
-        let name = format!("wp_stabilizers_{}_{}", scene.key(), prec.name());
-        figures += &plot_points(
-            ctx,
-            &name,
-            &format!("{}, {}: stabilizers", scene.name(), prec.name()),
-            &points,
-        );
+        let figure = ("wp_stabilizers_", "stabilizers");
+        figures += &rows_and_figure(ctx, scene, prec, &points, &mut csv, WpStabilizers, figure);
     }
     let table = ctx.table(&csv);
     format!(
