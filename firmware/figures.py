@@ -225,26 +225,17 @@ def write_bench_csv(rows):
             f.write(f"{prec},{scheme},{stab},{inp},{v}\n")
 
 
-def run_estimator(out):
-    rows = {}
+def run_rows(out, group, rows, what):
+    """{key: figure} from `out`'s lines `bench <group> <key> <figure>`; exits (naming `what`) unless they are
+    the keys of `rows` ((key, label)), each once, and `bench <group> done` follows."""
+    figures = {}
     for line in out.splitlines():
-        m = re.match(r"bench estimator (\S+) ([\d.]+)$", line)
+        m = re.match(rf"bench {group} (\S+) ([\d.]+)$", line)
         if m:
-            rows[m.group(1)] = float(m.group(2))
-    if "bench estimator done" not in out or sorted(rows) != sorted(k for k, _ in ESTIMATOR_ROWS):
-        raise SystemExit("predict did not finish or printed other rows:\n" + out)
-    return rows
-
-
-def run_front_end(out):
-    rows = {}
-    for line in out.splitlines():
-        m = re.match(r"bench front-end (\S+) ([\d.]+)$", line)
-        if m:
-            rows[m.group(1)] = float(m.group(2))
-    if "bench front-end done" not in out or sorted(rows) != sorted(k for k, _ in FRONT_END_ROWS):
-        raise SystemExit("predict's front end did not finish or printed other rows:\n" + out)
-    return rows
+            figures[m.group(1)] = float(m.group(2))
+    if f"bench {group} done" not in out or sorted(figures) != sorted(k for k, _ in rows):
+        raise SystemExit(f"{what} did not finish or printed other rows:\n" + out)
+    return figures
 
 
 # ---------------------------------------------------------------- 2. flash
@@ -396,6 +387,43 @@ def soft_section(soft):
 
 
 # ---------------------------------------------------------------- document
+def m4f_time_table(first_column, rows, figures):
+    """A table of `figures` (instructions, by key) with their time at M4F_HZ and CPU share at 1 kHz: a line
+    per (key, label) of `rows`, then a blank line."""
+    o = [f"| {first_column} | instructions | µs at {M4F_HZ / 1e6:.0f} MHz (at least) | "
+         "CPU share at 1 kHz (at least) |",
+         "|---|---:|---:|---:|"]
+    for key, label in rows:
+        us = figures[key] / M4F_HZ * 1e6
+        o.append(f"| {label} | {figures[key]:.1f} | {us:.2f} | {us / 10:.2f} % |")
+    o.append("")
+    return o
+
+
+def added_flash_table(builds, flash, text_added=False):
+    """The table of `minimal` builds ((label, sizes, _)) against ExpMap + History's row of the flash table:
+    section sizes, the flash added (.text + .rodata + .data) and, with `text_added`, the .text added; then a
+    blank line."""
+    base_sizes = next(sz for s_, i, sz in flash if (s_, i) == ("ExpMap", "History"))
+    base = sum(base_sizes[:3])
+    o = ["| `minimal` + | .text | .rodata | .data |" + (" .text added |" if text_added else "") + " added |",
+         "|---|---:|---:|---:|" + ("---:|" if text_added else "") + "---:|"]
+    for label, (t, r, d, _), _ in builds:
+        text = f" {t - base_sizes[0]} |" if text_added else ""
+        o.append(f"| {label} | {t} | {r} | {d} |{text} **{t + r + d - base}** |")
+    o.append("")
+    return o
+
+
+def largest_functions(intro, added):
+    """`intro`, then the ten largest of `added` ((function, bytes), largest first) as a table and a blank line;
+    nothing if `added` is empty."""
+    if not added:
+        return []
+    rows = [f"| `{name}` | {size} |" for name, size in added[:10]]
+    return [intro, "| function | bytes |", "|---|---:|"] + rows + [""]
+
+
 def estimator_section(est, est_flash, flash, worst):
     o = ["## The estimator's predict step\n"]
     o.append("What an error-state filter's covariance costs beside the propagator (issue 28): "
@@ -410,35 +438,19 @@ def estimator_section(est, est_flash, flash, worst):
              "with the call − the same loop without it) / n, inputs opaque, results kept. The time is at "
              f"{M4F_HZ / 1e6:.0f} MHz and one cycle per instruction, a lower bound: on silicon `vdiv.f32` and "
              "`vsqrt.f32` take 14 cycles and a load 2.\n")
-    o.append(f"| what | instructions | µs at {M4F_HZ / 1e6:.0f} MHz (at least) | CPU share at 1 kHz (at least) |")
-    o.append("|---|---:|---:|---:|")
-    for key, label in ESTIMATOR_ROWS:
-        us = est[key] / M4F_HZ * 1e6
-        o.append(f"| {label} | {est[key]:.1f} | {us:.2f} | {us / 10:.2f} % |")
-    o.append("")
+    o += m4f_time_table("what", ESTIMATOR_ROWS, est)
     push, every, tenth = (est[k] for k in ("push", "push+covariance-every-step", "push+covariance-every-10th"))
     o.append(f"The covariance every step multiplies the step's cost by {every / push:.0f}; every 10th step (what "
              "`Step::between` is for: `Φθθ` is then exactly the rotation the propagator took over the 10 steps) "
              f"by {tenth / push:.1f}. The push here is a call in this program's loop: {push:.1f} instructions, "
              "against the grid's figure above, where the compiler inlined it into the loop.\n")
-    base = next(sum(sz[:3]) for s_, i, sz in flash if (s_, i) == ("ExpMap", "History"))
     o.append("Flash: `minimal` (ExpMap + History + FirstOrder, as in the flash table) with the estimator's calls "
              "added (features `estimator-predict` and `estimator`), section sizes as above; **added** = flash "
              "(.text + .rodata + .data) − ExpMap + History's.\n")
-    o.append("| `minimal` + | .text | .rodata | .data | added |")
-    o.append("|---|---:|---:|---:|---:|")
-    for label, (t, r, d, _), _ in est_flash:
-        o.append(f"| {label} | {t} | {r} | {d} | **{t + r + d - base}** |")
-    o.append("")
+    o += added_flash_table(est_flash, flash)
     _, _, added = est_flash[-1]
-    if added:
-        o.append("The largest functions the estimator adds (bytes, llvm-nm; `main` inlines `Ud::predict` and "
-                 "`Step::between`, so it grows by their code):\n")
-        o.append("| function | bytes |")
-        o.append("|---|---:|")
-        for name, size in added[:10]:
-            o.append(f"| `{name}` | {size} |")
-        o.append("")
+    o += largest_functions("The largest functions the estimator adds (bytes, llvm-nm; `main` inlines "
+                           "`Ud::predict` and `Step::between`, so it grows by their code):\n", added)
     if any("sinf" in n for n, _ in added):
         o.append("libm's `sinf` and its kernels in software `f64` (`__muldf3`, `__adddf3`, ...) come with `Step`'s "
                  "closed form for a rotation beyond 2 rad per interval (`Real::sin` on `f32` is libm's, where the "
@@ -457,6 +469,7 @@ def estimator_section(est, est_flash, flash, worst):
 
 
 def front_end_section(front, front_flash, flash, worst):
+    # Opens as the estimator's section does, a heading then its own prose: alike in shape only.
     o = ["## The front end's in-motion estimators\n"]
     o.append("What learning the gyro in motion from the accelerometer costs beside the propagator: "
              "`frontend::CalibrationEstimator` (the gyro's 3x3 gain and residual bias, a 12-state Kalman filter "
@@ -470,32 +483,15 @@ def front_end_section(front, front_flash, flash, worst):
              "uncertainty shrank over them). Per sample over 64 samples (four loops of 16), each (the loop with "
              "the calls − the same loop without them) / n, inputs opaque, results kept; the time at "
              f"{M4F_HZ / 1e6:.0f} MHz and one cycle per instruction, a lower bound as above.\n")
-    o.append(f"| what, per sample | instructions | µs at {M4F_HZ / 1e6:.0f} MHz (at least) | "
-             "CPU share at 1 kHz (at least) |")
-    o.append("|---|---:|---:|---:|")
-    for key, label in FRONT_END_ROWS:
-        us = front[key] / M4F_HZ * 1e6
-        o.append(f"| {label} | {front[key]:.1f} | {us:.2f} | {us / 10:.2f} % |")
-    o.append("")
-    base_sizes = next(sz for s_, i, sz in flash if (s_, i) == ("ExpMap", "History"))
-    base = sum(base_sizes[:3])
+    o += m4f_time_table("what, per sample", FRONT_END_ROWS, front)
     o.append("Flash: `minimal` (ExpMap + History + FirstOrder, as in the flash table) with the rates through "
              "the calibration estimator (feature `calibration-estimator`: built from constants, `correct` "
              "before each push, `update` with a black-boxed accelerometer after it), section sizes as above; "
              "**added** = flash (.text + .rodata + .data) − ExpMap + History's, .text added beside it.\n")
-    o.append("| `minimal` + | .text | .rodata | .data | .text added | added |")
-    o.append("|---|---:|---:|---:|---:|---:|")
-    for label, (t, r, d, _), _ in front_flash:
-        o.append(f"| {label} | {t} | {r} | {d} | {t - base_sizes[0]} | **{t + r + d - base}** |")
-    o.append("")
+    o += added_flash_table(front_flash, flash, text_added=True)
     _, _, added = front_flash[-1]
-    if added:
-        o.append("The largest functions it adds (bytes, llvm-nm; a function that grew counts with its growth):\n")
-        o.append("| function | bytes |")
-        o.append("|---|---:|")
-        for name, size in added[:10]:
-            o.append(f"| `{name}` | {size} |")
-        o.append("")
+    o += largest_functions("The largest functions it adds (bytes, llvm-nm; a function that grew counts with its "
+                           "growth):\n", added)
     cal, mb, cal_size, mb_size, bound = worst["front-end"]
     o.append(f"Stack (painted by the `stack` program, bytes, past the start-up): one sample of "
              f"`CalibrationEstimator` (`correct` + `update`) **{cal}**, of `MotionBias` **{mb}**, each with the "
@@ -657,8 +653,8 @@ def main():
     bench, quick = run_bench(finish(procs["bench"], "bench"))
     burst = run_burst(finish(procs["burst"], "burst"))
     predict = finish(procs["predict"], "predict")
-    est = run_estimator(predict)
-    front = run_front_end(predict)
+    est = run_rows(predict, "estimator", ESTIMATOR_ROWS, "predict")
+    front = run_rows(predict, "front-end", FRONT_END_ROWS, "predict's front end")
     stack = run_stack(finish(procs["stack"], "stack"))
     soft = run_soft(soft_procs)
     write_bench_csv(bench)

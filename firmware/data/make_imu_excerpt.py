@@ -20,6 +20,7 @@ import numpy as np
 
 
 def main() -> None:
+    # The command line spelled out: a one-off script, alike in shape to python/benchmarks/make_excerpt.py's.
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("source", type=Path, help="a BROAD trial (HDF5)")
     ap.add_argument("target", type=Path, help="the binary file to write")

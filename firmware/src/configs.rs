@@ -26,84 +26,34 @@ pub trait Input: InputModel<f32> {
     fn sample(&self, w: Vec3<f32>, dt: f32) -> Self::Sample;
 }
 
-impl Input for Hold {
-    fn name(&self) -> &'static str {
-        "hold"
-    }
-    fn per_step(&self) -> u32 {
-        1
-    }
-    fn warm_up(&self) -> u32 {
-        0
-    }
-    #[inline(always)]
-    fn sample(&self, w: Vec3<f32>, _dt: f32) -> GyroSample<f32> {
-        GyroSample::new(w)
-    }
+/// [`Input`] for the models fed rates (a [`GyroSample`] per push): each one's label, samples per step and
+/// warm-up.
+macro_rules! rate_inputs {
+    ($($model:ty: $name:literal, per step $per_step:literal, warm-up $warm_up:literal;)*) => {$(
+        impl Input for $model {
+            fn name(&self) -> &'static str {
+                $name
+            }
+            fn per_step(&self) -> u32 {
+                $per_step
+            }
+            fn warm_up(&self) -> u32 {
+                $warm_up
+            }
+            #[inline(always)]
+            fn sample(&self, w: Vec3<f32>, _dt: f32) -> GyroSample<f32> {
+                GyroSample::new(w)
+            }
+        }
+    )*};
 }
 
-impl Input for Linear<f32> {
-    fn name(&self) -> &'static str {
-        "linear"
-    }
-    fn per_step(&self) -> u32 {
-        1
-    }
-    fn warm_up(&self) -> u32 {
-        1
-    }
-    #[inline(always)]
-    fn sample(&self, w: Vec3<f32>, _dt: f32) -> GyroSample<f32> {
-        GyroSample::new(w)
-    }
-}
-
-impl Input for History<f32> {
-    fn name(&self) -> &'static str {
-        "history"
-    }
-    fn per_step(&self) -> u32 {
-        1
-    }
-    fn warm_up(&self) -> u32 {
-        3
-    }
-    #[inline(always)]
-    fn sample(&self, w: Vec3<f32>, _dt: f32) -> GyroSample<f32> {
-        GyroSample::new(w)
-    }
-}
-
-impl Input for TwiceRate<f32> {
-    fn name(&self) -> &'static str {
-        "twice-rate"
-    }
-    fn per_step(&self) -> u32 {
-        2
-    }
-    fn warm_up(&self) -> u32 {
-        1
-    }
-    #[inline(always)]
-    fn sample(&self, w: Vec3<f32>, _dt: f32) -> GyroSample<f32> {
-        GyroSample::new(w)
-    }
-}
-
-impl Input for GaussPoints<f32> {
-    fn name(&self) -> &'static str {
-        "gauss-points"
-    }
-    fn per_step(&self) -> u32 {
-        2
-    }
-    fn warm_up(&self) -> u32 {
-        0
-    }
-    #[inline(always)]
-    fn sample(&self, w: Vec3<f32>, _dt: f32) -> GyroSample<f32> {
-        GyroSample::new(w)
-    }
+rate_inputs! {
+    Hold: "hold", per step 1, warm-up 0;
+    Linear<f32>: "linear", per step 1, warm-up 1;
+    History<f32>: "history", per step 1, warm-up 3;
+    TwiceRate<f32>: "twice-rate", per step 2, warm-up 1;
+    GaussPoints<f32>: "gauss-points", per step 2, warm-up 0;
 }
 
 impl<C: ConingCorrection> Input for DeltaAngles<f32, C> {

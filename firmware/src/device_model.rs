@@ -83,6 +83,7 @@ pub fn packet(i: usize) -> [u8; PACKET] {
     let mid = |v: i32| (v >> 4) as u8;
     let ext = |acc: i32, gyr: i32| (((acc & 0xF) << 4) | (gyr & 0xF)) as u8;
     let tick = TICKS[i & 1];
+    // Byte by byte as the datasheet lays the packet out.
     [
         0x78,
         hi(a[0]),

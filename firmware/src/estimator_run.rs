@@ -38,6 +38,7 @@ pub fn len() -> usize {
 
 /// The filter's state after a sample: attitude, bias and inclination σ (their bit patterns are what the
 /// program prints).
+// A plain record, one documented field a line: alike in shape only to other records.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct State {
     /// Samples taken.

@@ -7,6 +7,7 @@
 //! 16.384 ticks per instruction, a wrap after about 1 020 000. These are executed instructions, not
 //! cycles.
 
+use crate::exit::fail;
 use cortex_m::peripheral::{syst::SystClkSource, SYST};
 
 /// The `-icount shift` the runner passes to QEMU for the bench.
@@ -33,6 +34,15 @@ impl Counter {
         Self { syst }
     }
 
+    /// Takes the core peripherals for their SysTick (see [`Counter::new`]); exits 1 if they were taken
+    /// already.
+    pub fn take() -> Self {
+        let Some(cp) = cortex_m::Peripherals::take() else {
+            fail("peripherals")
+        };
+        Self::new(cp.SYST)
+    }
+
     /// Current counter value (counts down).
     #[inline(always)]
     pub fn now(&self) -> u32 {
@@ -55,4 +65,10 @@ impl Counter {
     pub fn free(self) -> SYST {
         self.syst
     }
+}
+
+/// Instructions ×100 per call (or step, or sample) over `n` of them: `(with − without) · 100 / n`, where
+/// `with` counts a loop with the calls and `without` the same loop without them (0 if it counted more).
+pub fn per_x100(with: u32, without: u32, n: u32) -> u32 {
+    ((u64::from(with.saturating_sub(without)) * 100) / u64::from(n)) as u32
 }

@@ -4,9 +4,10 @@
 //! embedded-hal driver demo: a scripted ICM-42688-P on SPI (`device_model`) read by the `icm426xx` driver into
 //! the quick start (`driver_demo`; both also compiled on the host); the example estimator on a BROAD excerpt
 //! (`estimator_run`, also compiled on the host); a body turning under gravity as the front end's in-motion
-//! estimators see it (`motion`).
+//! estimators see it (`motion`); the rates the instruction-counting programs feed (`bench_input`).
 #![cfg_attr(not(test), no_std)]
 
+pub mod bench_input;
 pub mod configs;
 pub mod device_model;
 pub mod driver_demo;

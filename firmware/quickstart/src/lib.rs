@@ -5,6 +5,8 @@
 //! `rust-baseline`).
 #![no_std]
 
+// Spelled out as users paste it: the C API's comparison harness keeps its own copy on the run-time kinds
+// (`ffi/src/baseline.rs`), which cannot share this code without changing what the README shows.
 // quick start: begin
 use quatprop::frontend::{AxisRemap, BiasEstimator, CountScale, FixedPeriod};
 use quatprop::{Error, GyroSample, Propagator, Quat, Recommended};

@@ -35,10 +35,11 @@ use quatprop::input::{History, Hold};
 use quatprop::scheme::{Cf4, Magnus4, Rk4};
 use quatprop::scheme::{ExpMap, Scheme};
 use quatprop::stabilize::{FirstOrder, Normalize, Stabilizer};
-use quatprop::{Propagator, Quat, Vec3};
+use quatprop::{Propagator, Quat};
+use quatprop_firmware::bench_input::{fifo_counts, rates};
 use quatprop_firmware::configs::Input;
-use quatprop_firmware::exit::{exit, fail};
-use quatprop_firmware::icount::Counter;
+use quatprop_firmware::exit::exit;
+use quatprop_firmware::icount::{per_x100, Counter};
 use quatprop_firmware::quickstart::Attitude;
 
 /// Steps per measured loop (fewer in soft-float, whose steps are 20 to 30 times longer: a loop must stay
@@ -46,15 +47,6 @@ use quatprop_firmware::quickstart::Attitude;
 const STEPS: u32 = if cfg!(fpu) { 64 } else { 16 };
 /// Step (s).
 const H: f32 = 1.0e-3;
-
-fn rates() -> [Vec3<f32>; 8] {
-    let mut r = [Vec3::ZERO; 8];
-    for (i, w) in r.iter_mut().enumerate() {
-        let a = i as f32 * 0.7;
-        *w = Vec3::new(0.3 + 0.1 * a, -0.2 + 0.05 * a, 1.0 - 0.03 * a);
-    }
-    r
-}
 
 #[inline(never)]
 fn baseline<I: Input>(c: &Counter, s: &[I::Sample; 8], dt: f32, n: u32) -> u32 {
@@ -104,7 +96,7 @@ fn measure<S: Scheme<f32>, I: Input, Z: Stabilizer, A: Accumulator<f32>>(
     if p.steps() - before != u64::from(STEPS) {
         return u32::MAX;
     }
-    ((u64::from(total.saturating_sub(base)) * 100) / u64::from(STEPS)) as u32
+    per_x100(total, base, STEPS)
 }
 
 fn report(ok: &mut bool, what: [&str; 4], v: u32) {
@@ -212,7 +204,7 @@ fn fixed_point(c: &Counter) -> u32 {
     if p.steps() - before != u64::from(STEPS) {
         return u32::MAX;
     }
-    ((u64::from(total.saturating_sub(base)) * 100) / u64::from(STEPS)) as u32
+    per_x100(total, base, STEPS)
 }
 
 /// Samples in the quick-start measurement: 8 FIFO bursts of 32 (one in soft-float).
@@ -234,10 +226,7 @@ fn quickstart(c: &Counter, fifo: &[[i16; 3]; 32], bursts: usize) -> (u32, bool) 
 
 #[entry]
 fn main() -> ! {
-    let Some(cp) = cortex_m::Peripherals::take() else {
-        fail("peripherals")
-    };
-    let c = Counter::new(cp.SYST);
+    let c = Counter::take();
     let mut ok = true;
     grid(&c, &mut ok);
     let v = fixed_point(&c);
@@ -249,16 +238,11 @@ fn main() -> ! {
     );
 
     // The quick start: (its cost on QS_SAMPLES samples − its cost on none) per sample.
-    let w = rates();
-    let mut fifo = [[0i16; 3]; 32];
-    for (i, s) in fifo.iter_mut().enumerate() {
-        let r = w[i & 7];
-        *s = [r.x, r.y, r.z].map(|v| (v * 938.734_6) as i16); // counts at ±2000 °/s
-    }
+    let fifo = fifo_counts();
     let (full, accepted) = quickstart(&c, &fifo, QS_SAMPLES / 32);
     let (empty, _) = quickstart(&c, &fifo, 0);
     ok &= accepted;
-    let per = (u64::from(full.saturating_sub(empty)) * 100 / QS_SAMPLES as u64) as u32;
+    let per = per_x100(full, empty, QS_SAMPLES as u32);
     defmt::println!(
         "bench quickstart on_fifo per-sample {=u32}.{=u32:02} (samples={=usize}, fixed={=u32})",
         per / 100,

@@ -20,20 +20,11 @@ use quatprop::frontend::FixedPeriod;
 use quatprop::input::{History, InputModel, Linear};
 use quatprop::scheme::{ExpMap, Rk4, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Normalize, Stabilizer, StabilizerKind};
-use quatprop::{GyroSample, Propagator, Quat, Vec3};
-use quatprop_firmware::exit::{exit, fail};
-use quatprop_firmware::icount::Counter;
+use quatprop::{GyroSample, Propagator, Quat};
+use quatprop_firmware::bench_input::{fifo_counts, rates};
+use quatprop_firmware::exit::exit;
+use quatprop_firmware::icount::{per_x100, Counter};
 use quatprop_firmware::quickstart::Attitude;
-
-/// The bench's 8 body rates (|omega| about 1.2 rad/s).
-fn rates() -> [Vec3<f32>; 8] {
-    let mut r = [Vec3::ZERO; 8];
-    for (i, w) in r.iter_mut().enumerate() {
-        let a = i as f32 * 0.7;
-        *w = Vec3::new(0.3 + 0.1 * a, -0.2 + 0.05 * a, 1.0 - 0.03 * a);
-    }
-    r
-}
 
 /// Samples in each burst measurement (a multiple of every burst length).
 const BURST_SAMPLES: usize = 256;
@@ -100,38 +91,34 @@ trait Bursts {
     fn state(&self) -> (Quat<f32>, u64);
 }
 
-impl<S, I, Z, A> Bursts for Propagator<f32, S, I, Z, A>
-where
-    S: Scheme<f32>,
-    I: InputModel<f32, Sample = GyroSample<f32>>,
-    Z: Stabilizer,
-    A: Accumulator<f32>,
-{
-    #[inline(always)]
-    fn burst(
-        &mut self,
-        s: &[GyroSample<f32>],
-        period: &mut FixedPeriod<f32>,
-    ) -> Result<usize, quatprop::Refused> {
-        self.push_burst(s, period)
-    }
-    fn state(&self) -> (Quat<f32>, u64) {
-        (self.attitude(), self.steps())
-    }
+/// [`Bursts`] by the inherent methods of the same names, which the static types and `Configured` both have
+/// (no library trait names them).
+macro_rules! bursts_by_inherent_methods {
+    ($([$($generics:tt)*] $ty:ty;)*) => {$(
+        impl<$($generics)*> Bursts for $ty {
+            #[inline(always)]
+            fn burst(
+                &mut self,
+                s: &[GyroSample<f32>],
+                period: &mut FixedPeriod<f32>,
+            ) -> Result<usize, quatprop::Refused> {
+                self.push_burst(s, period)
+            }
+            fn state(&self) -> (Quat<f32>, u64) {
+                (self.attitude(), self.steps())
+            }
+        }
+    )*};
 }
 
-impl Bursts for Configured<f32> {
-    #[inline(always)]
-    fn burst(
-        &mut self,
-        s: &[GyroSample<f32>],
-        period: &mut FixedPeriod<f32>,
-    ) -> Result<usize, quatprop::Refused> {
-        self.push_burst(s, period)
-    }
-    fn state(&self) -> (Quat<f32>, u64) {
-        (self.attitude(), self.steps())
-    }
+bursts_by_inherent_methods! {
+    [
+        S: Scheme<f32>,
+        I: InputModel<f32, Sample = GyroSample<f32>>,
+        Z: Stabilizer,
+        A: Accumulator<f32>,
+    ] Propagator<f32, S, I, Z, A>;
+    [] Configured<f32>;
 }
 
 /// `bursts` calls of `push_burst` with `len` samples each (the same sample sequence as above).
@@ -230,7 +217,7 @@ fn config_figures(c: &Counter) -> bool {
 /// (instructions of the loop over `BURST_SAMPLES` samples − instructions of the same timed call over none)
 /// per sample, ×100: the loop, the `dt` and the error check count, as a caller pays them.
 fn per_sample_x100(total: u32, empty: u32) -> u32 {
-    (u64::from(total.saturating_sub(empty)) * 100 / BURST_SAMPLES as u64) as u32
+    per_x100(total, empty, BURST_SAMPLES as u32)
 }
 
 fn report_burst(what: &str, len: usize, v: u32, identical: bool) {
@@ -305,18 +292,10 @@ fn quickstart_bursts(c: &Counter, fifo: &[[i16; 3]; 32]) -> bool {
 
 #[entry]
 fn main() -> ! {
-    let Some(cp) = cortex_m::Peripherals::take() else {
-        fail("peripherals")
-    };
-    let c = Counter::new(cp.SYST);
+    let c = Counter::take();
     let mut ok = burst_figures(&c);
     ok &= config_figures(&c);
-    let w = rates();
-    let mut fifo = [[0i16; 3]; 32];
-    for (i, s) in fifo.iter_mut().enumerate() {
-        let r = w[i & 7];
-        *s = [r.x, r.y, r.z].map(|v| (v * 938.734_6) as i16); // counts at ±2000 °/s
-    }
+    let fifo = fifo_counts();
     ok &= quickstart_bursts(&c, &fifo);
     defmt::println!("bench burst done");
     exit(ok)

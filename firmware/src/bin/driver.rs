@@ -18,6 +18,8 @@ fn main() -> ! {
         fail("driver run")
     };
     let (_, over) = model.served();
+    // The host test (`driver_output` in src/tests/snapshot.rs) writes the same line with `format!`: defmt
+    // formats only here, on the board, so each side lists the fields.
     defmt::println!(
         "driver icm426xx samples={=u32} bursts={=u32} rails={=u32} ticks={=u32} {=u32:08x} {=u32:08x} {=u32:08x} {=u32:08x} refused={=u32}",
         o.samples,

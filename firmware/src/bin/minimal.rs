@@ -26,37 +26,32 @@ use quatprop::stabilize::FirstOrder;
 use quatprop::{input, scheme, GyroSample, Propagator, Quat, Vec3};
 use quatprop_firmware::exit::exit;
 
-#[cfg(feature = "input-hold")]
-type I = input::Hold;
-#[cfg(feature = "input-linear")]
-type I = input::Linear<f32>;
-#[cfg(not(any(feature = "input-hold", feature = "input-linear")))]
-type I = input::History<f32>;
+/// `type $alias` = the type whose feature is enabled (at most one of them), else `$default`.
+macro_rules! type_by_feature {
+    ($alias:ident, default $default:ty, $($feature:literal => $ty:ty,)*) => {
+        $(
+            #[cfg(feature = $feature)]
+            type $alias = $ty;
+        )*
+        #[cfg(not(any($(feature = $feature),*)))]
+        type $alias = $default;
+    };
+}
 
-#[cfg(feature = "scheme-euler")]
-type S = scheme::Euler;
-#[cfg(feature = "scheme-rk2")]
-type S = scheme::Rk2;
-#[cfg(feature = "scheme-rk3")]
-type S = scheme::Rk3;
-#[cfg(feature = "scheme-rk5")]
-type S = scheme::Rk5;
-#[cfg(feature = "scheme-expmap")]
-type S = scheme::ExpMap;
-#[cfg(feature = "scheme-magnus4")]
-type S = scheme::Magnus4;
-#[cfg(feature = "scheme-cf4")]
-type S = scheme::Cf4;
-#[cfg(not(any(
-    feature = "scheme-euler",
-    feature = "scheme-rk2",
-    feature = "scheme-rk3",
-    feature = "scheme-rk5",
-    feature = "scheme-expmap",
-    feature = "scheme-magnus4",
-    feature = "scheme-cf4"
-)))]
-type S = scheme::Rk4;
+type_by_feature!(I, default input::History<f32>,
+    "input-hold" => input::Hold,
+    "input-linear" => input::Linear<f32>,
+);
+
+type_by_feature!(S, default scheme::Rk4,
+    "scheme-euler" => scheme::Euler,
+    "scheme-rk2" => scheme::Rk2,
+    "scheme-rk3" => scheme::Rk3,
+    "scheme-rk5" => scheme::Rk5,
+    "scheme-expmap" => scheme::ExpMap,
+    "scheme-magnus4" => scheme::Magnus4,
+    "scheme-cf4" => scheme::Cf4,
+);
 
 #[cfg(feature = "baseline")]
 #[entry]

@@ -177,6 +177,17 @@ fn estimator() {
     black_box((ud.matrix(), ud.variances(), ud.u(), ud.d()));
 }
 
+/// Every configuration of `input` (`each_scheme`) and its bursts, if this image has the input model: its
+/// feature is `selected`, or no input model's feature is named. Inlined, so that `selected` is a constant
+/// and an image without the model links none of its code.
+#[inline(always)]
+fn every_call_on<I: Input>(selected: bool, input: I) {
+    if ALL || selected {
+        each_scheme(&mut Exercise, input);
+        bursts_each(input);
+    }
+}
+
 /// `bursts` on both accumulators (as the image's accumulator features select).
 fn bursts_each<I: Input>(input: I) {
     if Exercise::PLAIN {
@@ -344,6 +355,7 @@ struct CompactBurst<'a> {
 
 impl Visit<f32> for CompactBurst<'_> {
     type Output = Result<usize, quatprop::Refused>;
+    // The signatures are `config::Visit`'s, one method per sample type.
     fn rates<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
     where
         S: Scheme<f32>,
@@ -421,36 +433,20 @@ fn main() -> ! {
             cortex_m::asm::wfi();
         }
     }
-    let v = &mut Exercise;
-    if ALL || cfg!(feature = "nopanic-hold") {
-        each_scheme(v, Hold);
-        bursts_each(Hold);
-    }
-    if ALL || cfg!(feature = "nopanic-linear") {
-        each_scheme(v, Linear::new());
-        bursts_each(Linear::new());
-    }
-    if ALL || cfg!(feature = "nopanic-history") {
-        each_scheme(v, History::new());
-        bursts_each(History::new());
-    }
-    if ALL || cfg!(feature = "nopanic-twice-rate") {
-        each_scheme(v, TwiceRate::new());
-        bursts_each(TwiceRate::new());
-    }
-    if ALL || cfg!(feature = "nopanic-gauss-points") {
-        each_scheme(v, GaussPoints::new());
-        bursts_each(GaussPoints::new());
-    }
-    if ALL || cfg!(feature = "nopanic-delta-two-sample") {
-        each_scheme(v, DeltaAngles::new(TwoSample));
-        bursts_each(DeltaAngles::new(TwoSample));
-    }
-    if ALL || cfg!(feature = "nopanic-delta-angles") {
-        // Every coning correction's code, behind the run-time choice.
-        each_scheme(v, DeltaAngles::new(black_box(ConingKind::FiveSample)));
-        bursts_each(DeltaAngles::new(black_box(ConingKind::FiveSample)));
-    }
+    every_call_on(cfg!(feature = "nopanic-hold"), Hold);
+    every_call_on(cfg!(feature = "nopanic-linear"), Linear::new());
+    every_call_on(cfg!(feature = "nopanic-history"), History::new());
+    every_call_on(cfg!(feature = "nopanic-twice-rate"), TwiceRate::new());
+    every_call_on(cfg!(feature = "nopanic-gauss-points"), GaussPoints::new());
+    every_call_on(
+        cfg!(feature = "nopanic-delta-two-sample"),
+        DeltaAngles::new(TwoSample),
+    );
+    // Every coning correction's code, behind the run-time choice.
+    every_call_on(
+        cfg!(feature = "nopanic-delta-angles"),
+        DeltaAngles::new(black_box(ConingKind::FiveSample)),
+    );
     if cfg!(feature = "nopanic-selftest") {
         // A reachable panic: this image must NOT link (shows the proof can fail).
         black_box(black_box(None::<u32>).unwrap());

@@ -34,23 +34,14 @@ use quatprop::input::History;
 use quatprop::scheme::ExpMap;
 use quatprop::stabilize::FirstOrder;
 use quatprop::{GyroSample, Propagator, Quat, Vec3};
+use quatprop_firmware::bench_input::rates;
 use quatprop_firmware::configs::Input;
-use quatprop_firmware::exit::{exit, fail};
-use quatprop_firmware::icount::Counter;
+use quatprop_firmware::exit::exit;
+use quatprop_firmware::icount::{per_x100, Counter};
 use quatprop_firmware::motion::{Motion, PERIOD, WARM_UP};
 
 /// Step (s).
 const H: f32 = 1.0e-3;
-
-/// The bench's 8 body rates (|omega| about 1.2 rad/s).
-fn rates() -> [Vec3<f32>; 8] {
-    let mut r = [Vec3::ZERO; 8];
-    for (i, w) in r.iter_mut().enumerate() {
-        let a = i as f32 * 0.7;
-        *w = Vec3::new(0.3 + 0.1 * a, -0.2 + 0.05 * a, 1.0 - 0.03 * a);
-    }
-    r
-}
 
 /// Instructions of the loop of [`pushes_with_covariance`] without the push.
 #[inline(never)]
@@ -175,9 +166,15 @@ fn corrections(c: &Counter, p: &mut Recommended, d: &[Vec3<f32>; 8], with: bool,
     Counter::instructions(Counter::ticks(t0, c.now()))
 }
 
-/// (with − without) × 100 / n.
-fn per(with: u32, without: u32, n: u32) -> u32 {
-    ((u64::from(with.saturating_sub(without)) * 100) / u64::from(n)) as u32
+/// Prints `bench <group> <what> <v / 100>.<v % 100>` (`v`: instructions ×100).
+fn report(group: &str, what: &str, v: u32) {
+    defmt::println!(
+        "bench {=str} {=str} {=u32}.{=u32:02}",
+        group,
+        what,
+        v / 100,
+        v % 100
+    );
 }
 
 /// The estimator's predict step, in f32 on the recommended configuration at 1 kHz, |omega| about 1.2 rad/s;
@@ -185,14 +182,7 @@ fn per(with: u32, without: u32, n: u32) -> u32 {
 /// correlated by 200 ms of prediction and two inclination updates before the counts). Prints
 /// `bench estimator <what> <instructions ×100 per step or per call>`.
 fn estimator(c: &Counter, ok: &mut bool) {
-    let report = |what: &str, v: u32| {
-        defmt::println!(
-            "bench estimator {=str} {=u32}.{=u32:02}",
-            what,
-            v / 100,
-            v % 100
-        );
-    };
+    let report = |what: &str, v: u32| report("estimator", what, v);
     // An ICM-42688-class gyro: 0.0028 °/s/√Hz, bias random walk 5 °/h/√h.
     let Ok(noise) = GyroNoise::<f32>::from_noise_density_dps(0.0028, 5.0) else {
         *ok = false;
@@ -234,15 +224,16 @@ fn estimator(c: &Counter, ok: &mut bool) {
     let mut q = p;
     let alone = pushes_with_covariance::<0>(c, &mut q, &mut ud, &noise, &s, dt, EST_STEPS, ok);
     let base = baseline(c, &s, dt, EST_STEPS);
-    report("push", per(alone, base, EST_STEPS));
+    let per_step = |instructions| per_x100(instructions, base, EST_STEPS);
+    report("push", per_step(alone));
     let mut q = p;
     ud = prior;
     let every = pushes_with_covariance::<1>(c, &mut q, &mut ud, &noise, &s, dt, EST_STEPS, ok);
-    report("push+covariance-every-step", per(every, base, EST_STEPS));
+    report("push+covariance-every-step", per_step(every));
     let mut q = p;
     ud = prior;
     let tenth = pushes_with_covariance::<10>(c, &mut q, &mut ud, &noise, &s, dt, EST_STEPS, ok);
-    report("push+covariance-every-10th", per(tenth, base, EST_STEPS));
+    report("push+covariance-every-10th", per_step(tenth));
 
     // Step::between alone: attitudes 10 ms apart.
     let mut qs = [Quat::IDENTITY; 9];
@@ -256,7 +247,7 @@ fn estimator(c: &Counter, ok: &mut bool) {
     }
     let qs = black_box(qs);
     let n = 64;
-    let v = per(
+    let v = per_x100(
         betweens(c, &qs, &noise, true, n),
         betweens(c, &qs, &noise, false, n),
         n,
@@ -275,19 +266,19 @@ fn estimator(c: &Counter, ok: &mut bool) {
     ud = prior;
     let with = predicts(c, &mut ud, &m, true, false, n);
     *ok &= ud.variances().iter().all(|v| v.is_finite() && *v > 0.0);
-    let v = per(with, predicts(c, &mut ud, &m, false, false, n), n);
+    let v = per_x100(with, predicts(c, &mut ud, &m, false, false, n), n);
     report("Ud::predict", v);
     ud = prior;
     let with = predicts(c, &mut ud, &m, true, true, n);
     *ok &= ud.variances().iter().all(|v| v.is_finite() && *v > 0.0);
-    let v = per(with, predicts(c, &mut ud, &m, false, true, n), n);
+    let v = per_x100(with, predicts(c, &mut ud, &m, false, true, n), n);
     report("Ud::predict_compensated", v);
 
     // One scalar update (an inclination row), alternating two rows.
     ud = prior;
     let with = updates(c, &mut ud, &rows, true, n);
     *ok &= ud.variances().iter().all(|v| v.is_finite() && *v > 0.0);
-    let v = per(with, updates(c, &mut ud, &rows, false, n), n);
+    let v = per_x100(with, updates(c, &mut ud, &rows, false, n), n);
     report("Ud::update", v);
 
     // A correction: rotate_body (mrad) + correct_bias (0.1 mrad/s).
@@ -295,7 +286,7 @@ fn estimator(c: &Counter, ok: &mut bool) {
     let mut q = p;
     let with = corrections(c, &mut q, &d, true, n);
     *ok &= q.attitude().is_finite();
-    let v = per(with, corrections(c, &mut q, &d, false, n), n);
+    let v = per_x100(with, corrections(c, &mut q, &d, false, n), n);
     report("rotate_body+correct_bias", v);
 }
 
@@ -309,46 +300,45 @@ const FRONT_SAMPLES: usize = FRONT_CHUNK * FRONT_CHUNKS;
 /// A gyro reading and an accelerometer sample.
 type Pair = (Vec3<f32>, Vec3<f32>);
 
-/// Instructions of `CalibrationEstimator::correct` of each reading then `update` (or of the loop alone)
-/// over `samples`. Sets `refused` on any refusal.
+/// Instructions of `call` on each (gyro reading, accelerometer) pair of `samples` at the sample period (or
+/// of the loop alone): one sample of a front end's estimator `est`. `call` tells whether it was refused;
+/// sets `refused` on any refusal.
 #[inline(never)]
-fn calibrations(
+fn front_end_samples<E>(
     c: &Counter,
-    est: &mut CalibrationEstimator<f32>,
+    est: &mut E,
     samples: &[Pair],
     with: bool,
     refused: &mut bool,
+    call: impl Fn(&mut E, Vec3<f32>, Vec3<f32>, f32) -> bool,
 ) -> u32 {
     let t0 = c.now();
     for pair in samples {
         let ((w, a), dt) = black_box((*pair, PERIOD));
         if with {
-            black_box(est.correct(GyroSample::new(w)));
-            *refused |= est.update(w, a, dt).is_err();
+            *refused |= call(est, w, a, dt);
         }
     }
     Counter::instructions(Counter::ticks(t0, c.now()))
 }
 
-/// Instructions of `MotionBias`'s bias subtracted from each reading then `update` (or of the loop alone)
-/// over `samples`. Sets `refused` on any refusal.
-#[inline(never)]
-fn motion_biases(
-    c: &Counter,
-    est: &mut MotionBias<f32>,
-    samples: &[Pair],
-    with: bool,
-    refused: &mut bool,
-) -> u32 {
-    let t0 = c.now();
-    for pair in samples {
-        let ((w, a), dt) = black_box((*pair, PERIOD));
-        if with {
-            black_box(w - est.bias());
-            *refused |= est.update(w, a, dt).is_err();
-        }
-    }
-    Counter::instructions(Counter::ticks(t0, c.now()))
+/// One sample of `CalibrationEstimator`: `correct` of the reading `w`, then `update`; true if refused.
+#[inline(always)]
+fn calibration_sample(
+    est: &mut CalibrationEstimator<f32>,
+    w: Vec3<f32>,
+    a: Vec3<f32>,
+    dt: f32,
+) -> bool {
+    black_box(est.correct(GyroSample::new(w)));
+    est.update(w, a, dt).is_err()
+}
+
+/// One sample of `MotionBias`: its bias subtracted from the reading `w`, then `update`; true if refused.
+#[inline(always)]
+fn motion_bias_sample(est: &mut MotionBias<f32>, w: Vec3<f32>, a: Vec3<f32>, dt: f32) -> bool {
+    black_box(w - est.bias());
+    est.update(w, a, dt).is_err()
 }
 
 /// The sum of the gain's standard deviations (a Kalman update shrinks it; nothing else changes it).
@@ -359,14 +349,7 @@ fn gain_spread(est: &CalibrationEstimator<f32>) -> f32 {
 /// The front end's in-motion estimators at 1 kHz on `quatprop_firmware::motion`'s body, past their start-up
 /// (3.1 s of samples first); prints `bench front-end <what> <instructions ×100 per sample>`.
 fn front_end(c: &Counter, ok: &mut bool) {
-    let report = |what: &str, v: u32| {
-        defmt::println!(
-            "bench front-end {=str} {=u32}.{=u32:02}",
-            what,
-            v / 100,
-            v % 100
-        );
-    };
+    let report = |what: &str, v: u32| report("front-end", what, v);
     let (Ok(mut cal), Ok(mut mb)) = (
         CalibrationEstimator::<f32>::new(1.0e-3, 0.01, 0.0087),
         MotionBias::<f32>::new(1.0e-3),
@@ -377,10 +360,8 @@ fn front_end(c: &Counter, ok: &mut bool) {
     let mut motion = Motion::new();
     for _ in 0..WARM_UP {
         let (w, a) = motion.next_sample();
-        black_box(cal.correct(GyroSample::new(w)));
-        *ok &= cal.update(w, a, PERIOD).is_ok();
-        black_box(w - mb.bias());
-        *ok &= mb.update(w, a, PERIOD).is_ok();
+        *ok &= !calibration_sample(&mut cal, w, a, PERIOD);
+        *ok &= !motion_bias_sample(&mut mb, w, a, PERIOD);
     }
     let mut samples = [(Vec3::ZERO, Vec3::ZERO); FRONT_SAMPLES];
     for s in samples.iter_mut() {
@@ -389,36 +370,35 @@ fn front_end(c: &Counter, ok: &mut bool) {
     let samples = black_box(samples);
     let mut refused = false;
     let spread = gain_spread(&cal);
-    let (mut with, mut without) = (0, 0);
-    for chunk in samples.chunks(FRONT_CHUNK) {
-        with += calibrations(c, &mut cal, chunk, true, &mut refused);
-        without += calibrations(c, &mut cal, chunk, false, &mut refused);
-    }
+    let v = per_sample(&samples, |chunk, with| {
+        front_end_samples(c, &mut cal, chunk, with, &mut refused, calibration_sample)
+    });
     // The Kalman update ran: the gain's uncertainty shrank over the counted samples.
     *ok &= gain_spread(&cal) < spread;
-    report(
-        "CalibrationEstimator::correct+update",
-        per(with, without, FRONT_SAMPLES as u32),
-    );
+    report("CalibrationEstimator::correct+update", v);
+    let v = per_sample(&samples, |chunk, with| {
+        front_end_samples(c, &mut mb, chunk, with, &mut refused, motion_bias_sample)
+    });
+    *ok &= mb.bias().is_finite();
+    report("MotionBias::bias+update", v);
+    *ok &= !refused;
+}
+
+/// Instructions ×100 per sample of a front end's calls over `samples`, counted `FRONT_CHUNK` samples at a
+/// time (one loop inside one wrap of SysTick): `count(chunk, with)` gives the instructions of a loop over
+/// `chunk` with the calls (`with`) or of the loop alone.
+fn per_sample(samples: &[Pair], mut count: impl FnMut(&[Pair], bool) -> u32) -> u32 {
     let (mut with, mut without) = (0, 0);
     for chunk in samples.chunks(FRONT_CHUNK) {
-        with += motion_biases(c, &mut mb, chunk, true, &mut refused);
-        without += motion_biases(c, &mut mb, chunk, false, &mut refused);
+        with += count(chunk, true);
+        without += count(chunk, false);
     }
-    *ok &= mb.bias().is_finite();
-    report(
-        "MotionBias::bias+update",
-        per(with, without, FRONT_SAMPLES as u32),
-    );
-    *ok &= !refused;
+    per_x100(with, without, samples.len() as u32)
 }
 
 #[entry]
 fn main() -> ! {
-    let Some(cp) = cortex_m::Peripherals::take() else {
-        fail("peripherals")
-    };
-    let c = Counter::new(cp.SYST);
+    let c = Counter::take();
     let mut ok = true;
     estimator(&c, &mut ok);
     defmt::println!("bench estimator done");

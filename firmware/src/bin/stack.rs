@@ -43,14 +43,16 @@ const BOUND_ESTIMATOR: usize = 1280;
 /// restore on a non-finite result, the 12-state filter's matrices), 1304 (`MotionBias`); about 25 % over
 /// the largest.
 const BOUND_FRONT_END: usize = 5632;
-const PAINT: u32 = 0xA5A5_A5A5;
-/// Painted depth below the measuring frame (bytes): above every bound.
-const DEPTH: usize = 8192;
-/// Margin left unpainted under the measuring function's own frame (bytes).
-const MARGIN: usize = 64;
 
+/// The stack depth of `f` (bytes below this function's frame, by painting) and what `f` returned.
 #[inline(never)]
 fn measure(f: &dyn Fn() -> u64) -> (usize, u64) {
+    /// The pattern painted below the frame.
+    const PAINT: u32 = 0xA5A5_A5A5;
+    /// Painted depth below the measuring frame (bytes): above every bound.
+    const DEPTH: usize = 8192;
+    /// Margin left unpainted under the measuring function's own frame (bytes).
+    const MARGIN: usize = 64;
     let sp = cortex_m::register::msp::read() as usize;
     let top = sp - MARGIN;
     let bottom = sp - DEPTH;
@@ -123,6 +125,7 @@ impl Worst {
 }
 
 impl Visitor for Worst {
+    // The signature is `Visitor::visit`'s, as the trait declares it.
     fn visit<S, I, Z, A>(
         &mut self,
         scheme: S,
