@@ -168,6 +168,7 @@ macro_rules! impl_real {
             ) -> &'static [[Self; COLS]; ROWS] {
                 &Rounded::<$t, Table, ROWS, COLS>::TABLE
             }
+            // The integer casts, alike in shape to `Real`'s `from_f64` and `to_f64` below.
             #[inline(always)]
             fn from_i32(v: i32) -> Self {
                 v as $t
@@ -214,18 +215,14 @@ macro_rules! impl_real {
             fn to_f64(self) -> f64 {
                 self as f64
             }
-            // As in `sealed::Float` above: the public functions' forwarding, alike in shape.
+            // `abs` is not `<$t>::abs`: before Rust 1.85 core has no inherent `abs`, and that path
+            // resolves to this trait method itself (unbounded recursion; the MSRV job runs the quick start).
             forward! {
                 fn sqrt(self) => $sqrt;
                 fn sin(self) => $sin;
                 fn cos(self) => $cos;
                 fn atan2(self, x) => $atan2;
-            }
-            #[inline(always)]
-            fn abs(self) -> Self {
-                // Not `<$t>::abs`: before Rust 1.85 core has no inherent `abs`, and that path resolves to
-                // this trait method itself (unbounded recursion; the MSRV job runs the quick start).
-                $abs(self)
+                fn abs(self) => $abs;
             }
             #[inline(always)]
             fn is_finite(self) -> bool {
