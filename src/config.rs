@@ -40,7 +40,7 @@ use crate::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
 use crate::frontend::{FixedPeriod, TickClock};
 use crate::input::coning::ConingKind;
 use crate::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
-use crate::propagator::{checked_unit, correct_in_place, Counters, Frame};
+use crate::propagator::{checked_unit, corrected, Counters, Frame};
 use crate::scheme::{
     Baumgarte, Cf4, Euler, ExpMap, Magnus4, Rk2, Rk3, Rk4, Rk5, Scheme, SchemeKind,
 };
@@ -603,7 +603,7 @@ impl<T: Real, X: ConfiguredSample<T>> Op<T> for TimedBurst<'_, X, T> {
 
 // The methods below mirror `Propagator`'s one for one (the run-time API is the static one, documented
 // there): each forwards to the static propagator through `visit`, or to code written once in
-// propagator.rs (`correct_in_place`, `checked_unit`); the repeated lines are the mirror's signatures and docs.
+// propagator.rs (`corrected`, `checked_unit`); the repeated lines are the mirror's signatures and docs.
 impl<T: Real> Configured<T> {
     /// Runs `visitor` on the static propagator this one stands for, then keeps its new state. One `match`
     /// on the configuration per call.
@@ -798,13 +798,11 @@ impl<T: Real> Configured<T> {
 
     /// A correction through the accumulator, as [`Propagator::rotate_body`] makes it.
     fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
-        correct_in_place(
-            &mut self.q,
-            &mut self.accumulator,
-            dtheta,
-            frame,
-            |a, q, d| a.add(q, d),
-        )
+        (self.q, self.accumulator) =
+            corrected(self.q, self.accumulator, dtheta, frame, |a, q, d| {
+                a.add(q, d)
+            })?;
+        Ok(())
     }
 
     /// [`Propagator::rotate_body`]: `q ← q ⊗ exp_q(dtheta)`, a correction in the body frame (rad).

@@ -153,16 +153,17 @@ pub(crate) enum Frame {
     Reference,
 }
 
-/// Corrects the attitude `q` by the rotation vector `dtheta` (rad) in `frame`, its increment added through
-/// `add` (an accumulator's `add`) on a copy of `accumulator`; both are written back only with a finite
-/// result, so an error leaves them unchanged. Written once for the static and the run-time propagator.
-pub(crate) fn correct_in_place<T: Real, A: Copy>(
-    q: &mut Quat<T>,
-    accumulator: &mut A,
+/// The attitude `q` corrected by the rotation vector `dtheta` (rad) in `frame`, its increment added
+/// through `add` (an accumulator's `add`) on a copy of `accumulator`: the new attitude and accumulator,
+/// which the caller keeps only with this result (an error leaves it unchanged). Written once for the
+/// static and the run-time propagator.
+pub(crate) fn corrected<T: Real, A: Copy>(
+    q: Quat<T>,
+    mut accumulator: A,
     dtheta: Vec3<T>,
     frame: Frame,
     add: impl FnOnce(&mut A, Quat<T>, Quat<T>) -> Quat<T>,
-) -> Result<(), Error> {
+) -> Result<(Quat<T>, A), Error> {
     if !dtheta.is_finite() {
         return Err(Error::NonFiniteRate);
     }
@@ -175,15 +176,12 @@ pub(crate) fn correct_in_place<T: Real, A: Copy>(
         });
     }
     let d = match frame {
-        Frame::Body => *q * e,
-        Frame::Reference => e * *q,
+        Frame::Body => q * e,
+        Frame::Reference => e * q,
     };
-    let mut acc = *accumulator;
-    let next = add(&mut acc, *q, d);
+    let next = add(&mut accumulator, q, d);
     if next.is_finite() {
-        *q = next;
-        *accumulator = acc;
-        Ok(())
+        Ok((next, accumulator))
     } else {
         Err(Error::NonFiniteResult)
     }
@@ -545,13 +543,11 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
 
     /// A correction through the accumulator; commits only a finite result.
     fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
-        correct_in_place(
-            &mut self.q,
-            &mut self.accumulator,
-            dtheta,
-            frame,
-            |a, q, d| a.add(q, d),
-        )
+        (self.q, self.accumulator) =
+            corrected(self.q, self.accumulator, dtheta, frame, |a, q, d| {
+                a.add(q, d)
+            })?;
+        Ok(())
     }
 
     /// The bias subtracted from the samples grew by `delta` (rad/s, body axes): an estimator's bias
