@@ -324,18 +324,30 @@ pub trait Visit<T: Real> {
     /// What the loop returns.
     type Output;
     /// The loop, for an input model that takes [`GyroSample`]s.
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>;
+    fn rates<S: Scheme<T>, I: RateModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output;
     /// The loop, for an input model that takes [`DeltaAngle`]s.
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>;
+    fn deltas<S: Scheme<T>, I: DeltaModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output;
 }
+
+/// The static propagator a [`Configured`] stands for, as a [`Visit`] sees it: the scheme `S`, input model
+/// `I` and accumulator `A` as types, the stabilizer the run-time [`StabilizerKind`].
+pub type Visited<T, S, I, A> = Propagator<T, S, I, StabilizerKind, A>;
+
+/// An input model that takes [`GyroSample`]s (every model but [`DeltaAngles`]): the models
+/// [`Visit::rates`] is called with.
+pub trait RateModel<T: Real>: InputModel<T, Sample = GyroSample<T>> {}
+impl<T: Real, I: InputModel<T, Sample = GyroSample<T>>> RateModel<T> for I {}
+
+/// An input model that takes [`DeltaAngle`]s ([`DeltaAngles`]): the models [`Visit::deltas`] is called
+/// with.
+pub trait DeltaModel<T: Real>: InputModel<T, Sample = DeltaAngle<T>> {}
+impl<T: Real, I: InputModel<T, Sample = DeltaAngle<T>>> DeltaModel<T> for I {}
 
 /// Which of [`Visit`]'s loops an input model takes (by its sample type).
 trait Route<T: Real, I: InputModel<T>> {
@@ -467,9 +479,6 @@ impl<T: Copy> Kind<T> for DeltaAngle<T> {
 trait Model<T: Real>: InputModel<T, Sample: Kind<T>> {}
 impl<T: Real, I: InputModel<T, Sample: Kind<T>>> Model<T> for I {}
 
-/// The static propagator a [`Configured`] runs (the stabilizer chosen at run time).
-type Run<T, S, I, A> = Propagator<T, S, I, StabilizerKind, A>;
-
 /// A burst's samples as the input model's kind, pushed by `push`; a non-empty burst of the other kind is
 /// refused at index 0.
 #[inline(always)]
@@ -495,7 +504,7 @@ trait Op<T: Real> {
     type Output;
     fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
         self,
-        p: &mut Run<T, S, I, A>,
+        p: &mut Visited<T, S, I, A>,
     ) -> Self::Output;
 }
 
@@ -505,21 +514,17 @@ struct Either<O>(O);
 impl<T: Real, O: Op<T>> Visit<T> for Either<O> {
     type Output = O::Output;
     #[inline(always)]
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
+    fn rates<S: Scheme<T>, I: RateModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output {
         self.0.run(p)
     }
     #[inline(always)]
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
+    fn deltas<S: Scheme<T>, I: DeltaModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output {
         self.0.run(p)
     }
 }
@@ -535,7 +540,7 @@ impl<T: Real, X: ConfiguredSample<T>> Op<T> for Push<'_, X, T> {
     #[inline(always)]
     fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
         self,
-        p: &mut Run<T, S, I, A>,
+        p: &mut Visited<T, S, I, A>,
     ) -> Self::Output {
         match I::Sample::of(core::slice::from_ref(self.sample)) {
             Some([s]) => p.push(*s, self.dt),
@@ -552,7 +557,7 @@ impl<T: Real, X: ConfiguredSample<T>> Op<T> for Start<'_, X> {
     #[inline(always)]
     fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
         self,
-        p: &mut Run<T, S, I, A>,
+        p: &mut Visited<T, S, I, A>,
     ) -> Self::Output {
         match I::Sample::of(core::slice::from_ref(self.0)) {
             Some([s]) => p.start(*s),
@@ -572,7 +577,7 @@ impl<T: Real, X: ConfiguredSample<T>> Op<T> for Burst<'_, X, T> {
     #[inline(always)]
     fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
         self,
-        p: &mut Run<T, S, I, A>,
+        p: &mut Visited<T, S, I, A>,
     ) -> Self::Output {
         of_kind(I::Sample::of(self.samples), self.samples.is_empty(), |s| {
             p.push_burst(s, self.period)
@@ -591,7 +596,7 @@ impl<T: Real, X: ConfiguredSample<T>> Op<T> for TimedBurst<'_, X, T> {
     #[inline(always)]
     fn run<S: Scheme<T>, I: Model<T>, A: Accumulator<T>>(
         self,
-        p: &mut Run<T, S, I, A>,
+        p: &mut Visited<T, S, I, A>,
     ) -> Self::Output {
         of_kind(
             I::Sample::of_timed(self.samples),

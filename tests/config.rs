@@ -2,7 +2,9 @@
 //! static types it stands for, one sample at a time and in bursts, refusals included.
 
 use quatprop::accumulate::{Accumulator, FloatFloat, Kahan, Plain};
-use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
+use quatprop::config::{
+    AccumulatorKind, Config, Configured, DeltaModel, InputKind, RateModel, Visit, Visited,
+};
 use quatprop::frontend::{FixedPeriod, TickClock};
 use quatprop::input::coning::ConingKind;
 use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
@@ -96,20 +98,16 @@ struct CompactBurst<'a, T> {
 // repeats (the C API's and the firmware's too).
 impl<T: Real> Visit<T> for CompactBurst<'_, T> {
     type Output = Result<usize, Refused>;
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
+    fn rates<S: Scheme<T>, I: RateModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output {
         p.push_burst(self.rates, self.period)
     }
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
+    fn deltas<S: Scheme<T>, I: DeltaModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output {
         p.push_burst(self.deltas, self.period)
     }
 }

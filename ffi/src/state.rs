@@ -12,7 +12,9 @@
 
 use crate::{quatprop_config_t, quatprop_sample_t};
 use quatprop::accumulate::Accumulator;
-use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
+use quatprop::config::{
+    AccumulatorKind, Config, Configured, DeltaModel, InputKind, RateModel, Visit, Visited,
+};
 use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CountScale, FixedBias, FixedPeriod,
     TickClock,
@@ -325,12 +327,10 @@ pub struct RateLoop<'a> {
 impl Visit<f32> for RateLoop<'_> {
     type Output = Result<usize, Refusal>;
     #[inline(always)]
-    fn rates<S, I, A>(mut self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = GyroSample<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn rates<S: Scheme<f32>, I: RateModel<f32>, A: Accumulator<f32>>(
+        mut self,
+        p: &mut Visited<f32, S, I, A>,
+    ) -> Self::Output {
         let n = self.rates.len();
         let mut result = Ok(n);
         for i in 0..n {
@@ -353,12 +353,10 @@ impl Visit<f32> for RateLoop<'_> {
         self.time.restore(self.front);
         result
     }
-    fn deltas<S, I, A>(self, _: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = DeltaAngle<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn deltas<S: Scheme<f32>, I: DeltaModel<f32>, A: Accumulator<f32>>(
+        self,
+        _: &mut Visited<f32, S, I, A>,
+    ) -> Self::Output {
         Err((0, Fail::WrongInputKind))
     }
 }
@@ -382,21 +380,17 @@ pub struct DeltaLoop<'a> {
 
 impl Visit<f32> for DeltaLoop<'_> {
     type Output = Result<usize, Refusal>;
-    fn rates<S, I, A>(self, _: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = GyroSample<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn rates<S: Scheme<f32>, I: RateModel<f32>, A: Accumulator<f32>>(
+        self,
+        _: &mut Visited<f32, S, I, A>,
+    ) -> Self::Output {
         Err((0, Fail::WrongInputKind))
     }
     #[inline(always)]
-    fn deltas<S, I, A>(mut self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = DeltaAngle<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn deltas<S: Scheme<f32>, I: DeltaModel<f32>, A: Accumulator<f32>>(
+        mut self,
+        p: &mut Visited<f32, S, I, A>,
+    ) -> Self::Output {
         let n = match self.deltas {
             Deltas::One(_) => 1,
             Deltas::Samples(s) => s.len(),

@@ -18,11 +18,13 @@ use crate::peer_types::{ahrs_vec, from_ahrs, from_na, na_vec, to_ahrs, to_na, Na
 use crate::sample::Sample;
 use crate::{peer_loops, peers};
 use quatprop::accumulate::Accumulator;
-use quatprop::config::{AccumulatorKind, Config as LibConfig, Configured, InputKind, Visit};
-use quatprop::input::InputModel;
+use quatprop::config::{
+    AccumulatorKind, Config as LibConfig, Configured, DeltaModel, InputKind, RateModel, Visit,
+    Visited,
+};
 use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::StabilizerKind;
-use quatprop::{DeltaAngle, Error, GyroSample, Propagator, Quat, Real, Vec3};
+use quatprop::{Error, GyroSample, Quat, Real, Vec3};
 
 /// A scheme's short name (`"Rk4"`), from the library's record.
 pub fn scheme_name(m: SchemeKind) -> &'static str {
@@ -527,12 +529,7 @@ struct Feed<'a, T> {
 
 impl<T: Real> Visit<T> for Feed<'_, T> {
     type Output = ();
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>)
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
+    fn rates<S: Scheme<T>, I: RateModel<T>, A: Accumulator<T>>(self, p: &mut Visited<T, S, I, A>) {
         let mut local = *p;
         let mut rest = self.samples;
         if self.start_first {
@@ -556,12 +553,10 @@ impl<T: Real> Visit<T> for Feed<'_, T> {
         }
         *p = local;
     }
-    fn deltas<S, I, A>(self, _: &mut Propagator<T, S, I, StabilizerKind, A>)
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
+    fn deltas<S: Scheme<T>, I: DeltaModel<T>, A: Accumulator<T>>(
+        self,
+        _: &mut Visited<T, S, I, A>,
+    ) {
         // The lab's streams are rates; no lab configuration takes delta angles.
         for _ in self.samples {
             refuse(self.refused, self.first, Error::WrongSampleKind);
@@ -766,9 +761,10 @@ impl<T: LabReal> Integrator<T> for NalgebraAxisRun<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use quatprop::input::{History, Hold, Linear, TwiceRate};
+    use quatprop::input::{History, Hold, InputModel, Linear, TwiceRate};
     use quatprop::scheme::Rk4;
     use quatprop::stabilize::FirstOrder;
+    use quatprop::Propagator;
 
     fn stream(rates_z: &[f64], dt: f64) -> Vec<Sample<f64>> {
         rates_z

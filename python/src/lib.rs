@@ -21,7 +21,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::IntoPyObjectExt;
 use quatprop::accumulate::Accumulator;
-use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
+use quatprop::config::{
+    AccumulatorKind, Config, Configured, DeltaModel, InputKind, RateModel, Visit, Visited,
+};
 use quatprop::frontend::{
     Alignment, Aux, AxisRemap, BiasEstimator, Calibration, CalibrationEstimator, CountScale,
     FixedBias, FixedPeriod, MotionBias, SampleTiming, TickClock,
@@ -237,20 +239,16 @@ struct Run<'a, 'b, T> {
 // Both of `Visit`'s methods, the same loop: the trait has one per sample type, each with its own bounds.
 impl<T: Real> Visit<T> for Run<'_, '_, T> {
     type Output = Result<(), Refused>;
-    fn rates<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = GyroSample<T>>,
-        A: Accumulator<T>,
-    {
+    fn rates<S: Scheme<T>, I: RateModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output {
         run(p, self.time, self.rows, self.saturated, self.out, self.mask)
     }
-    fn deltas<S, I, A>(self, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<T>,
-        I: InputModel<T, Sample = DeltaAngle<T>>,
-        A: Accumulator<T>,
-    {
+    fn deltas<S: Scheme<T>, I: DeltaModel<T>, A: Accumulator<T>>(
+        self,
+        p: &mut Visited<T, S, I, A>,
+    ) -> Self::Output {
         run(p, self.time, self.rows, self.saturated, self.out, self.mask)
     }
 }

@@ -41,7 +41,7 @@
 use core::hint::black_box;
 use cortex_m_rt::entry;
 use quatprop::accumulate::{Accumulator, Kahan, Plain};
-use quatprop::config::{AccumulatorKind, Config, InputKind, Visit};
+use quatprop::config::{AccumulatorKind, Config, DeltaModel, InputKind, RateModel, Visit, Visited};
 use quatprop::covariance::Ud;
 use quatprop::error_state::{GyroNoise, Step};
 use quatprop::fixed::Q30Propagator;
@@ -50,7 +50,7 @@ use quatprop::frontend::{
     FixedBias, FixedPeriod, MotionBias, SampleTiming, TickClock,
 };
 use quatprop::input::coning::{ConingKind, TwoSample};
-use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, InputModel, Linear, TwiceRate};
+use quatprop::input::{DeltaAngles, GaussPoints, History, Hold, Linear, TwiceRate};
 use quatprop::noise::{AllanVariance, NoiseFit};
 use quatprop::scheme::{Scheme, SchemeKind};
 use quatprop::stabilize::{Stabilizer, StabilizerKind};
@@ -356,20 +356,16 @@ struct CompactBurst<'a> {
 impl Visit<f32> for CompactBurst<'_> {
     type Output = Result<usize, quatprop::Refused>;
     // The signatures are `config::Visit`'s, one method per sample type.
-    fn rates<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = GyroSample<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn rates<S: Scheme<f32>, I: RateModel<f32>, A: Accumulator<f32>>(
+        self,
+        p: &mut Visited<f32, S, I, A>,
+    ) -> Self::Output {
         p.push_burst(self.rates, self.period)
     }
-    fn deltas<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>) -> Self::Output
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = DeltaAngle<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn deltas<S: Scheme<f32>, I: DeltaModel<f32>, A: Accumulator<f32>>(
+        self,
+        p: &mut Visited<f32, S, I, A>,
+    ) -> Self::Output {
         p.push_burst(self.deltas, self.period)
     }
 }

@@ -8,12 +8,14 @@ use crate::report::Ctx;
 use crate::study::{CsvFile, NoArgs, Study};
 use crate::table::{self, Csv, Table};
 use quatprop::accumulate::{Accumulator, Kahan};
-use quatprop::config::{AccumulatorKind, Config, Configured, InputKind, Visit};
+use quatprop::config::{
+    AccumulatorKind, Config, Configured, DeltaModel, InputKind, RateModel, Visit, Visited,
+};
 use quatprop::frontend::FixedPeriod;
 use quatprop::input::{History, InputModel, Linear};
 use quatprop::scheme::{ExpMap, Rk4, Scheme, SchemeKind};
 use quatprop::stabilize::{FirstOrder, Normalize, Stabilizer, StabilizerKind};
-use quatprop::{DeltaAngle, GyroSample, Propagator, Quat, Vec3};
+use quatprop::{GyroSample, Propagator, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 use std::hint::black_box;
 use std::time::Instant;
@@ -82,20 +84,16 @@ struct CompactBurst<'a> {
 // The method signatures are the `Visit` trait's, which every visitor spells out.
 impl Visit<f32> for CompactBurst<'_> {
     type Output = ();
-    fn rates<S, I, A>(self, p: &mut Propagator<f32, S, I, StabilizerKind, A>)
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = GyroSample<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn rates<S: Scheme<f32>, I: RateModel<f32>, A: Accumulator<f32>>(
+        self,
+        p: &mut Visited<f32, S, I, A>,
+    ) {
         let _ = black_box(p.push_burst(self.burst, self.period));
     }
-    fn deltas<S, I, A>(self, _: &mut Propagator<f32, S, I, StabilizerKind, A>)
-    where
-        S: Scheme<f32>,
-        I: InputModel<f32, Sample = DeltaAngle<f32>>,
-        A: Accumulator<f32>,
-    {
+    fn deltas<S: Scheme<f32>, I: DeltaModel<f32>, A: Accumulator<f32>>(
+        self,
+        _: &mut Visited<f32, S, I, A>,
+    ) {
         // Both configurations take rates.
     }
 }
@@ -115,10 +113,16 @@ fn stream(n: usize) -> Vec<GyroSample<f32>> {
 }
 
 /// Times one run over the stream in bursts (ns per sample) and returns the final attitude.
-fn timed(samples: &[GyroSample<f32>], run: impl FnOnce(&[GyroSample<f32>]) -> Quat<f32>) -> (f64, Quat<f32>) {
+fn timed(
+    samples: &[GyroSample<f32>],
+    run: impl FnOnce(&[GyroSample<f32>]) -> Quat<f32>,
+) -> (f64, Quat<f32>) {
     let t0 = Instant::now();
     let q = run(black_box(samples));
-    (t0.elapsed().as_nanos() as f64 / samples.len() as f64, black_box(q))
+    (
+        t0.elapsed().as_nanos() as f64 / samples.len() as f64,
+        black_box(q),
+    )
 }
 
 fn period() -> FixedPeriod<f32> {
@@ -147,7 +151,10 @@ where
     let compact_run = in_bursts(configured, Configured::attitude, |p, burst, period| {
         p.visit_compact(CompactBurst { burst, period });
     });
-    (name.to_string(), vec![static_run, configured_run, compact_run])
+    (
+        name.to_string(),
+        vec![static_run, configured_run, compact_run],
+    )
 }
 
 type Variant = Box<dyn Fn(&[GyroSample<f32>]) -> Quat<f32>>;
