@@ -803,10 +803,13 @@ impl<T: Real> Configured<T> {
 
     /// A correction through the accumulator, as [`Propagator::rotate_body`] makes it.
     fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
-        (self.q, self.accumulator) =
-            corrected(self.q, self.accumulator, dtheta, frame, |a, q, d| {
-                a.add(q, d)
-            })?;
+        (self.q, self.accumulator) = corrected(
+            self.q,
+            self.accumulator,
+            dtheta,
+            frame,
+            AccumulatorState::add,
+        )?;
         Ok(())
     }
 

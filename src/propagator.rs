@@ -543,10 +543,7 @@ impl<T: Real, S: Scheme<T>, I: InputModel<T>, Z: Stabilizer, A: Accumulator<T>>
 
     /// A correction through the accumulator; commits only a finite result.
     fn correct(&mut self, dtheta: Vec3<T>, frame: Frame) -> Result<(), Error> {
-        (self.q, self.accumulator) =
-            corrected(self.q, self.accumulator, dtheta, frame, |a, q, d| {
-                a.add(q, d)
-            })?;
+        (self.q, self.accumulator) = corrected(self.q, self.accumulator, dtheta, frame, A::add)?;
         Ok(())
     }
 
