@@ -351,36 +351,31 @@ impl<T: Real, I: InputModel<T, Sample = DeltaAngle<T>>> DeltaModel<T> for I {}
 
 /// Which of [`Visit`]'s loops an input model takes (by its sample type).
 trait Route<T: Real, I: InputModel<T>> {
-    fn call<V, S, A>(v: V, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> V::Output
-    where
-        V: Visit<T>,
-        S: Scheme<T>,
-        A: Accumulator<T>;
+    fn call<V: Visit<T>, S: Scheme<T>, A: Accumulator<T>>(
+        v: V,
+        p: &mut Visited<T, S, I, A>,
+    ) -> V::Output;
 }
 
 struct Rates;
 struct Deltas;
 
-impl<T: Real, I: InputModel<T, Sample = GyroSample<T>>> Route<T, I> for Rates {
+impl<T: Real, I: RateModel<T>> Route<T, I> for Rates {
     #[inline(always)]
-    fn call<V, S, A>(v: V, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> V::Output
-    where
-        V: Visit<T>,
-        S: Scheme<T>,
-        A: Accumulator<T>,
-    {
+    fn call<V: Visit<T>, S: Scheme<T>, A: Accumulator<T>>(
+        v: V,
+        p: &mut Visited<T, S, I, A>,
+    ) -> V::Output {
         v.rates(p)
     }
 }
 
-impl<T: Real, I: InputModel<T, Sample = DeltaAngle<T>>> Route<T, I> for Deltas {
+impl<T: Real, I: DeltaModel<T>> Route<T, I> for Deltas {
     #[inline(always)]
-    fn call<V, S, A>(v: V, p: &mut Propagator<T, S, I, StabilizerKind, A>) -> V::Output
-    where
-        V: Visit<T>,
-        S: Scheme<T>,
-        A: Accumulator<T>,
-    {
+    fn call<V: Visit<T>, S: Scheme<T>, A: Accumulator<T>>(
+        v: V,
+        p: &mut Visited<T, S, I, A>,
+    ) -> V::Output {
         v.deltas(p)
     }
 }

@@ -45,8 +45,9 @@ impl<T: Real> Segment<T> for HeldRate<T> {
     }
 }
 
-/// ω linear in time through its values at two nodes of the step (fractions of it, symmetric about ½):
-/// `first` at [`Nodes::FIRST`], `second` at [`Nodes::SECOND`], linear between and beyond them. Both
+/// ω (rad/s, body axes) linear in time through its values at two nodes of the step (fractions of it,
+/// symmetric about ½): `first` at [`Nodes::FIRST`], `second` at [`Nodes::SECOND`], linear between and
+/// beyond them. Both
 /// [`LinearRate`] (the step's ends) and [`GaussRates`] (its Gauss–Legendre nodes) are this segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TwoNodeRate<T, N> {
@@ -75,11 +76,12 @@ impl<T: Real, N: Nodes> TwoNodeRate<T, N> {
     }
 }
 
-/// Where a [`TwoNodeRate`]'s two values sit in the step (fractions of it, symmetric about ½).
-pub trait Nodes: Copy {
-    /// The first node.
+/// Where a [`TwoNodeRate`]'s two values sit in the step (fractions of it, symmetric about ½: the
+/// segment's half-angle rule needs the symmetry). Sealed: [`Ends`] and [`GaussNodes`] are the nodes.
+pub trait Nodes: Copy + sealed::Sealed {
+    /// The first node (fraction of the step).
     const FIRST: f64;
-    /// The second node.
+    /// The second node (fraction of the step).
     const SECOND: f64;
     /// `1/(SECOND − FIRST)`: turns the difference of the two node values into a slope per unit step.
     const INV_GAP: f64;
@@ -89,6 +91,7 @@ pub trait Nodes: Copy {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Ends;
 
+impl sealed::Sealed for Ends {}
 impl Nodes for Ends {
     const FIRST: f64 = 0.0;
     const SECOND: f64 = 1.0;
@@ -99,10 +102,16 @@ impl Nodes for Ends {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GaussNodes;
 
+impl sealed::Sealed for GaussNodes {}
 impl Nodes for GaussNodes {
     const FIRST: f64 = gauss::NODE_1;
     const SECOND: f64 = gauss::NODE_2;
     const INV_GAP: f64 = gauss::INV_GAP;
+}
+
+mod sealed {
+    /// Keeps [`super::Nodes`] to this crate's two sets of nodes.
+    pub trait Sealed {}
 }
 
 /// ω linear from its value at the start to its value at the end of the step.
